@@ -1,0 +1,138 @@
+// Scene: the one description of a ring-chain problem that every model runs from
+// (DESIGN.md "The contract"). Parsed from TOML once, validated once, then immutable.
+// All values SI; the TOML keys carry their units (e.g. `outer_diameter_m`).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ringcrush::compare {
+
+// A scene that cannot be run: names the file, the key and the reason.
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, std::string key, std::string reason);
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string file_, key_, reason_;
+};
+
+struct HardeningPoint {
+  double yield_stress_pa;
+  double plastic_strain;
+};
+
+struct Material {
+  double youngs_modulus_pa;
+  double poisson_ratio;
+  double density_kg_m3;
+  // Isotropic hardening, piecewise linear in equivalent plastic strain, flat after the
+  // last point (thesis *PLASTIC). First point at plastic strain 0.
+  std::vector<HardeningPoint> hardening;
+
+  double initial_yield_stress() const { return hardening.front().yield_stress_pa; }
+  // Slope of the first hardening segment (E′ of Tables 1–2); 0 for a single point.
+  double hardening_modulus() const;
+};
+
+enum class SectionState { PlaneStress, PlaneStrain };
+
+struct Rings {
+  int count;
+  double outer_diameter_m;
+  double wall_thickness_m;
+  double width_m;
+  double pitch_m;  // distance between neighbouring ring centres (= D when touching)
+  SectionState section;
+  Material material;
+};
+
+enum class JointType { Welded, Free, Plates };
+struct Joints {
+  JointType type;
+  double plate_mass_kg = 0.0;       // plates only
+  double plate_thickness_m = 0.0;   // plates only
+};
+
+struct Impactor {
+  double mass_kg;       // physical (full) mass; a half model uses half of it
+  double velocity_m_s;  // speed toward the chain (dynamic analyses)
+};
+
+enum class FarEnd { Fixed, Free };
+enum class AnalysisType { Static, Dynamic };
+enum class Symmetry { Half, Full };
+
+struct Analysis {
+  AnalysisType type;
+  double crush_m = 0.0;        // static: driven-plate travel
+  double end_time_s = 0.0;     // dynamic: latest end
+  bool stop_at_rest = true;    // dynamic: end once the impactor stops and rings are at rest
+  Symmetry symmetry = Symmetry::Half;
+};
+
+enum class Integration { Full, Reduced, Selective };
+enum class FeSolver { Static, Hht, Explicit };
+
+struct FeSettings {
+  int elements_around = 48;          // per half ring (the thesis's 48)
+  int elements_through = 1;
+  double grading = 1.0;              // element size ratio far/near the contact points
+  Integration integration = Integration::Selective;
+  FeSolver solver = FeSolver::Static;
+  double hht_alpha = -0.105;         // Hilber: α ∈ [−1/3, 0]
+  double initial_step_s = 5e-7;
+  double haftol_n = 1e4;             // half-step residual tolerance (thesis §3.5)
+  double ptol_n = 6.0;               // force residual tolerance (thesis PTOL)
+  double initial_increment = 0.01;   // static: fraction of the total travel
+  double contact_penalty_scale = 1.0;
+  double friction_coefficient = 0.0;
+  double explicit_safety = 0.8;
+  double energy_error_limit = 0.05;  // stop when |balance error| / KE0 exceeds this
+};
+
+enum class HingeIntegrator { Ida, Odeint };
+struct HingeSettings {
+  std::string level = "1";  // "0", "1", "2", "3" or "shock"
+  HingeIntegrator integrator = HingeIntegrator::Ida;
+  double relative_tolerance = 1e-8;
+  double absolute_tolerance = 1e-10;
+  double redwood_alpha = 2.0;
+  int nodes_per_ring = 48;
+};
+
+struct Outputs {
+  bool history = true;
+  bool fields = true;      // ParaView frames
+  int frames = 20;         // number of field frames over the run
+  bool plots = true;       // SVG
+};
+
+struct Scene {
+  std::string name;         // file stem
+  std::string title;
+  std::filesystem::path source;
+  Rings rings;
+  Joints joints;
+  std::optional<Impactor> impactor;  // dynamic analyses
+  FarEnd far_end = FarEnd::Fixed;
+  Analysis analysis;
+  FeSettings fe;
+  HingeSettings hinge;
+  Outputs outputs;
+};
+
+Scene load_scene(const std::filesystem::path& file);
+// Parses TOML text; `file` is used in messages only.
+Scene parse_scene(const std::string& text, const std::string& file);
+
+std::string to_string(JointType);
+std::string to_string(AnalysisType);
+
+}  // namespace ringcrush::compare

@@ -1,0 +1,253 @@
+#include "ida_solver.hpp"
+
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fmt/format.h>
+
+namespace ringcrush::hinge {
+
+IdaError::IdaError(std::string function, int flag, const std::string& message)
+    : std::runtime_error(message), function_(std::move(function)), flag_(flag) {}
+
+namespace {
+
+std::string flag_name(int flag) {
+  char* name = IDAGetReturnFlagName(flag);  // allocated by IDA
+  std::string result = name ? name : "unknown";
+  std::free(name);
+  return result;
+}
+
+// The one place that turns SUNDIALS return codes into exceptions.
+void check_ida(int flag, const char* function, const std::string& last_message = {}) {
+  if (flag >= 0) return;
+  throw IdaError(function, flag,
+                 fmt::format("{} failed with {} ({}){}{}", function, flag_name(flag), flag,
+                             last_message.empty() ? "" : ": ", last_message));
+}
+
+template <typename T>
+T* check_alloc(T* p, const char* function) {
+  if (!p) throw IdaError(function, -1, fmt::format("{} returned no object", function));
+  return p;
+}
+
+class DenseSink final : public JacobianSink {
+ public:
+  explicit DenseSink(SUNMatrix m) : m_(m) {}
+  void set(std::size_t row, std::size_t col, double value) override {
+    SM_ELEMENT_D(m_, static_cast<sunindextype>(row), static_cast<sunindextype>(col)) = value;
+  }
+
+ private:
+  SUNMatrix m_;
+};
+
+class BandSink final : public JacobianSink {
+ public:
+  explicit BandSink(SUNMatrix m) : m_(m) {}
+  void set(std::size_t row, std::size_t col, double value) override {
+    const auto i = static_cast<sunindextype>(row), j = static_cast<sunindextype>(col);
+    if (i - j > SM_LBAND_B(m_) || j - i > SM_UBAND_B(m_))
+      throw std::out_of_range(fmt::format("Jacobian entry ({}, {}) outside the band", row, col));
+    SM_ELEMENT_B(m_, i, j) = value;
+  }
+
+ private:
+  SUNMatrix m_;
+};
+
+}  // namespace
+
+struct IdaSolver::Impl {
+  SUNContext context = nullptr;
+  void* ida = nullptr;
+  N_Vector y = nullptr, yp = nullptr, id = nullptr;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  IdaOptions options;
+  std::string last_message;
+
+  ~Impl() {
+    if (ida) IDAFree(&ida);
+    if (linear_solver) SUNLinSolFree(linear_solver);
+    if (matrix) SUNMatDestroy(matrix);
+    if (id) N_VDestroy(id);
+    if (yp) N_VDestroy(yp);
+    if (y) N_VDestroy(y);
+    if (context) SUNContext_Free(&context);
+  }
+
+  void check(int flag, const char* function) {
+    check_ida(flag, function, last_message);
+    last_message.clear();
+  }
+
+  static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
+    try {
+      static_cast<DaeSystem*>(user)->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
+                                              N_VGetArrayPointer(r));
+      return 0;
+    } catch (...) {
+      return -1;  // unrecoverable: IDA stops and reports IDA_RES_FAIL
+    }
+  }
+
+  static int roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* user) {
+    static_cast<DaeSystem*>(user)->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
+    return 0;
+  }
+
+  static int jacobian(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector, SUNMatrix J,
+                      void* user, N_Vector, N_Vector, N_Vector) {
+    SUNMatZero(J);
+    auto* system = static_cast<DaeSystem*>(user);
+    if (SUNMatGetID(J) == SUNMATRIX_BAND) {
+      BandSink sink(J);
+      system->jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), sink);
+    } else {
+      DenseSink sink(J);
+      system->jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), sink);
+    }
+    return 0;
+  }
+
+  static void error_handler(int, const char* module, const char* function, char* msg,
+                            void* data) {
+    static_cast<Impl*>(data)->last_message = fmt::format("{}::{}: {}", module, function, msg);
+  }
+};
+
+IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0,
+                     const std::vector<double>& yp0, const IdaOptions& options)
+    : impl_(std::make_unique<Impl>()), system_(system), t_(t0), y_(y0), yp_(yp0) {
+  const auto n = static_cast<sunindextype>(system.size());
+  if (y0.size() != system.size() || yp0.size() != system.size())
+    throw std::invalid_argument("IdaSolver: y0 and yp0 must match the system size");
+  auto& m = *impl_;
+  m.options = options;
+  m.check(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
+  m.y = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
+  m.yp = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
+  std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(m.y));
+  std::copy(yp0.begin(), yp0.end(), N_VGetArrayPointer(m.yp));
+
+  m.ida = check_alloc(IDACreate(m.context), "IDACreate");
+  m.check(IDASetErrHandlerFn(m.ida, &Impl::error_handler, &m), "IDASetErrHandlerFn");
+  m.check(IDAInit(m.ida, &Impl::residual, t0, m.y, m.yp), "IDAInit");
+  m.check(IDASetUserData(m.ida, &system), "IDASetUserData");
+  m.check(IDASStolerances(m.ida, options.relative_tolerance, options.absolute_tolerance),
+          "IDASStolerances");
+  m.check(IDASetMaxNumSteps(m.ida, options.max_steps), "IDASetMaxNumSteps");
+  if (options.max_step > 0.0) m.check(IDASetMaxStep(m.ida, options.max_step), "IDASetMaxStep");
+
+  if (options.linear_solver == IdaOptions::LinearSolver::Band) {
+    m.matrix = check_alloc(
+        SUNBandMatrix(n, options.upper_bandwidth, options.lower_bandwidth, m.context),
+        "SUNBandMatrix");
+    m.linear_solver = check_alloc(SUNLinSol_Band(m.y, m.matrix, m.context), "SUNLinSol_Band");
+  } else {
+    m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
+    m.linear_solver = check_alloc(SUNLinSol_Dense(m.y, m.matrix, m.context), "SUNLinSol_Dense");
+  }
+  m.check(IDASetLinearSolver(m.ida, m.linear_solver, m.matrix), "IDASetLinearSolver");
+  if (system.has_jacobian()) m.check(IDASetJacFn(m.ida, &Impl::jacobian), "IDASetJacFn");
+
+  const auto mask = system.differential_mask();
+  if (!mask.empty()) {
+    if (mask.size() != system.size())
+      throw std::invalid_argument("IdaSolver: differential mask must match the system size");
+    m.id = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
+    std::copy(mask.begin(), mask.end(), N_VGetArrayPointer(m.id));
+    m.check(IDASetId(m.ida, m.id), "IDASetId");
+    if (options.suppress_algebraic_error_test)
+      m.check(IDASetSuppressAlg(m.ida, SUNTRUE), "IDASetSuppressAlg");
+  }
+
+  if (const auto nroots = system.root_count(); nroots > 0) {
+    m.check(IDARootInit(m.ida, static_cast<int>(nroots), &Impl::roots), "IDARootInit");
+    m.check(IDASetNoInactiveRootWarn(m.ida), "IDASetNoInactiveRootWarn");
+  }
+}
+
+IdaSolver::~IdaSolver() = default;
+
+void IdaSolver::pull() {
+  const auto n = y_.size();
+  std::copy_n(N_VGetArrayPointer(impl_->y), n, y_.begin());
+  std::copy_n(N_VGetArrayPointer(impl_->yp), n, yp_.begin());
+}
+
+void IdaSolver::calc_initial_conditions(double tout1) {
+  auto& m = *impl_;
+  if (!m.id) throw std::logic_error("IdaSolver: IDACalcIC needs a differential mask");
+  m.check(IDACalcIC(m.ida, IDA_YA_YDP_INIT, tout1), "IDACalcIC");
+  m.check(IDAGetConsistentIC(m.ida, m.y, m.yp), "IDAGetConsistentIC");
+  pull();
+}
+
+void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector<double>& yp) {
+  auto& m = *impl_;
+  std::copy(y.begin(), y.end(), N_VGetArrayPointer(m.y));
+  std::copy(yp.begin(), yp.end(), N_VGetArrayPointer(m.yp));
+  m.check(IDAReInit(m.ida, t, m.y, m.yp), "IDAReInit");
+  t_ = t;
+  y_ = y;
+  yp_ = yp;
+}
+
+void IdaSolver::set_stop_time(double t_stop) {
+  impl_->check(IDASetStopTime(impl_->ida, t_stop), "IDASetStopTime");
+}
+
+void IdaSolver::set_root_direction(const std::vector<int>& direction) {
+  if (direction.size() != system_.root_count())
+    throw std::invalid_argument("IdaSolver: one direction per root function");
+  std::vector<int> copy = direction;
+  impl_->check(IDASetRootDirection(impl_->ida, copy.data()), "IDASetRootDirection");
+}
+
+IdaSolver::Step IdaSolver::run(double tout, int mode) {
+  auto& m = *impl_;
+  realtype tret = t_;
+  const int flag = IDASolve(m.ida, tout, &tret, m.y, m.yp, mode);
+  if (flag < 0) {
+    const std::string where = fmt::format("IDASolve at t = {:.9g} s toward {:.9g} s", tret, tout);
+    check_ida(flag, where.c_str(), m.last_message);
+  }
+  t_ = tret;
+  pull();
+  Step step{t_, flag == IDA_ROOT_RETURN, flag == IDA_TSTOP_RETURN, {}};
+  if (step.root_found) {
+    step.roots_found.assign(system_.root_count(), 0);
+    m.check(IDAGetRootInfo(m.ida, step.roots_found.data()), "IDAGetRootInfo");
+  }
+  return step;
+}
+
+IdaSolver::Step IdaSolver::advance(double tout) { return run(tout, IDA_NORMAL); }
+IdaSolver::Step IdaSolver::step(double tout) { return run(tout, IDA_ONE_STEP); }
+
+IdaStatistics IdaSolver::statistics() const {
+  auto& m = *impl_;
+  IdaStatistics s;
+  m.check(IDAGetNumSteps(m.ida, &s.steps), "IDAGetNumSteps");
+  m.check(IDAGetNumResEvals(m.ida, &s.residual_evaluations), "IDAGetNumResEvals");
+  m.check(IDAGetNumJacEvals(m.ida, &s.jacobian_evaluations), "IDAGetNumJacEvals");
+  m.check(IDAGetNumNonlinSolvIters(m.ida, &s.nonlinear_iterations), "IDAGetNumNonlinSolvIters");
+  m.check(IDAGetNumErrTestFails(m.ida, &s.error_test_failures), "IDAGetNumErrTestFails");
+  m.check(IDAGetNumNonlinSolvConvFails(m.ida, &s.nonlinear_convergence_failures),
+          "IDAGetNumNonlinSolvConvFails");
+  if (system_.root_count() > 0) m.check(IDAGetNumGEvals(m.ida, &s.root_evaluations), "IDAGetNumGEvals");
+  return s;
+}
+
+}  // namespace ringcrush::hinge
