@@ -136,6 +136,7 @@ void run(const FormulaOptions& o) {
 
 }  // namespace
 
+namespace {
 void add_formula_command(CLI::App& app) {
   auto o = std::make_shared<FormulaOptions>();
   auto* cmd = app.add_subcommand(
@@ -154,5 +155,8 @@ void add_formula_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)");
   cmd->callback([o] { run(*o); });
 }
+
+const CommandRegistration registration{10, add_formula_command};
+}  // namespace
 
 }  // namespace ringcrush::compare::cli

@@ -6,6 +6,7 @@
 
 namespace ringcrush::compare::cli {
 
+namespace {
 void add_validate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check scene files (TOML) and report the first error in each");
   auto files = std::make_shared<std::vector<std::string>>();
@@ -18,5 +19,8 @@ void add_validate_command(CLI::App& app) {
     }
   });
 }
+
+const CommandRegistration registration{90, add_validate_command};
+}  // namespace
 
 }  // namespace ringcrush::compare::cli

@@ -1,12 +1,23 @@
-// Each `ringcrush` subcommand lives in its own file and registers itself here.
+// Each `ringcrush` subcommand lives in its own file (compare/cli/cmd_*.cpp) and registers
+// itself with a static CommandRegistration, so adding a command touches no shared file.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
+#include <vector>
 
 namespace ringcrush::compare::cli {
 
-void add_formula_command(CLI::App& app);
-void add_validate_command(CLI::App& app);
+using CommandFactory = std::function<void(CLI::App&)>;
+
+// Commands in registration order of their `order` key (help lists them that way).
+std::vector<std::pair<int, CommandFactory>>& command_registry();
+
+struct CommandRegistration {
+  CommandRegistration(int order, CommandFactory factory) {
+    command_registry().emplace_back(order, std::move(factory));
+  }
+};
 
 // Exit codes shared by all subcommands.
 inline constexpr int exit_ok = 0;

@@ -6,6 +6,7 @@
 // Exit status: 0 success, 1 a run failed (with a diagnosis), 2 bad input or usage.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 
 #include "compare/cli/commands.hpp"
@@ -17,8 +18,10 @@ int main(int argc, char** argv) {
                "and the thesis load formula (see README.md)"};
   app.set_version_flag("--version", std::string(ringcrush::compare::version()));
   app.require_subcommand(1);
-  ringcrush::compare::cli::add_formula_command(app);
-  ringcrush::compare::cli::add_validate_command(app);
+  auto& commands = ringcrush::compare::cli::command_registry();
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [order, add] : commands) add(app);
 
   try {
     app.parse(argc, argv);
@@ -43,3 +46,10 @@ int main(int argc, char** argv) {
   }
   return ringcrush::compare::cli::exit_ok;
 }
+
+namespace ringcrush::compare::cli {
+std::vector<std::pair<int, CommandFactory>>& command_registry() {
+  static std::vector<std::pair<int, CommandFactory>> registry;
+  return registry;
+}
+}  // namespace ringcrush::compare::cli

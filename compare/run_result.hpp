@@ -1,0 +1,57 @@
+// RunResult: what every model (fe, hinge) hands to compare/ (DESIGN.md "The contract").
+// Models fill the histories and final state; compare/ computes every metric once from
+// here and writes summary.json / history.csv with the stable column names of DESIGN.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "compare/scene.hpp"
+
+namespace ringcrush::compare {
+
+struct RunEvent {
+  double time_s;        // (or deflection for static runs)
+  std::string kind;     // "hinge_formed", "contact_opened", "contact_closed", "ring_locked", ...
+  int ring = -1;        // 0-based, −1 when not ring-specific
+  std::string detail;
+};
+
+struct SolverStatistics {
+  long steps = 0;
+  long rejected_steps = 0;
+  long newton_iterations = 0;
+  double wall_time_s = 0.0;
+};
+
+struct RunResult {
+  std::string model;           // "fe" | "hinge"
+  std::string scene;           // scene name
+  AnalysisType analysis = AnalysisType::Dynamic;
+
+  // Histories, one entry per output step; the first and the last step always present.
+  std::vector<double> time_s;                     // dynamic
+  std::vector<double> deflection_m;               // static: driven-plate travel
+  std::vector<double> force_n;                    // static: plate force (whole ring)
+  std::vector<double> impactor_displacement_m;    // dynamic
+  std::vector<double> impactor_velocity_m_s;      // dynamic, positive toward the chain
+  std::vector<double> impactor_force_n;           // dynamic, contact force on the impactor
+  std::vector<std::vector<double>> ring_crush_m;  // [ring][step], δ_i = H0 − H_i
+  // Energies [step] (J): kinetic, elastic (recoverable), plastic dissipation, contact
+  // (penalty energy + contact damping), numerical dissipation, external work.
+  std::vector<double> kinetic_j, elastic_j, plastic_j, contact_j, numerical_j, external_work_j;
+
+  // Final state per ring.
+  std::vector<double> crush_ratio;          // c_i = δ_i / D
+  std::vector<bool> wrap_around;
+  std::vector<double> wrapped_angle_deg;
+  std::vector<double> inverted_arc_m;
+  std::vector<std::string> mode;            // "flattened", "wrapped", "intact", ...
+
+  std::vector<RunEvent> events;
+  SolverStatistics statistics;
+  nlohmann::json extra = nlohmann::json::object();  // model-specific summary fields
+};
+
+}  // namespace ringcrush::compare
