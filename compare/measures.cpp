@@ -1,0 +1,163 @@
+#include "compare/measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace ringcrush::compare {
+namespace {
+constexpr double pi = std::numbers::pi;
+
+void require_shape(const RingShape& r) {
+  if (r.points.size() < 3 || r.points.size() != r.material_angle.size())
+    throw std::invalid_argument("ring shape needs >= 3 points and one material angle each");
+}
+
+double point_segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + s * ab - p).norm();
+}
+
+// Distance from p to a ring's polyline; a half ring is mirrored about x = 0 first.
+double distance_to_ring(const Eigen::Vector2d& p, const RingShape& r) {
+  double best = std::numeric_limits<double>::infinity();
+  const std::size_t n = r.points.size();
+  const bool closed = !r.half;
+  for (int mirror = 0; mirror < (r.half ? 2 : 1); ++mirror) {
+    const double sx = mirror ? -1.0 : 1.0;
+    for (std::size_t j = 0; j + (closed ? 0 : 1) < n; ++j) {
+      Eigen::Vector2d a = r.points[j], b = r.points[(j + 1) % n];
+      a.x() *= sx;
+      b.x() *= sx;
+      best = std::min(best, point_segment_distance(p, a, b));
+    }
+  }
+  return best;
+}
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+}  // namespace
+
+double axial_extent(const RingShape& ring) {
+  require_shape(ring);
+  auto [lo, hi] = std::minmax_element(ring.points.begin(), ring.points.end(),
+                                      [](const auto& a, const auto& b) { return a.y() < b.y(); });
+  return hi->y() - lo->y() + ring.surface_offset;
+}
+
+double crush(const RingShape& ring, double outer_diameter) { return outer_diameter - axial_extent(ring); }
+
+double crush_ratio(const RingShape& ring, double outer_diameter) {
+  return crush(ring, outer_diameter) / outer_diameter;
+}
+
+double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double cap_distance) {
+  require_shape(upper);
+  require_shape(lower);
+  // Walk away from the apex on each side while the points stay within the cap distance.
+  const std::size_t n = lower.points.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  auto angle = [&](std::size_t i) {  // signed angle from the apex in (−π, π]
+    double a = std::remainder(lower.material_angle[i], 2 * pi);
+    return a;
+  };
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return std::abs(angle(a)) < std::abs(angle(b)); });
+  double extent_pos = 0.0, extent_neg = 0.0;
+  bool open_pos = true, open_neg = true;
+  for (std::size_t k : order) {
+    const double a = angle(k);
+    const bool near = distance_to_ring(lower.points[k], upper) <= cap_distance;
+    if (a >= 0 && open_pos) { if (near) extent_pos = std::max(extent_pos, a); else open_pos = false; }
+    if (a <= 0 && open_neg) { if (near) extent_neg = std::max(extent_neg, -a); else open_neg = false; }
+  }
+  const double total = lower.half ? 2 * extent_pos : extent_pos + extent_neg;
+  return std::min(360.0, total * 180.0 / pi);
+}
+
+double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
+  require_shape(ring);
+  const std::size_t n = ring.points.size();
+  const bool closed = !ring.half;
+  const double points_per_ring = ring.half ? 2.0 * static_cast<double>(n - 1) : static_cast<double>(n);
+  if (turning_tolerance < 0) turning_tolerance = 0.1 * 2 * pi / points_per_ring;
+  // Signed turning angle at each interior point; its sum gives the ring's orientation.
+  std::vector<double> turning(n, 0.0);
+  double total = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!closed && (j == 0 || j + 1 == n)) continue;
+    const Eigen::Vector2d a = ring.points[j] - ring.points[(j + n - 1) % n];
+    const Eigen::Vector2d b = ring.points[(j + 1) % n] - ring.points[j];
+    turning[j] = std::atan2(cross(a, b), a.dot(b));
+    total += turning[j];
+  }
+  const double orientation = total >= 0 ? 1.0 : -1.0;
+  double length = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!closed && (j == 0 || j + 1 == n)) continue;
+    const double theta = std::abs(std::remainder(ring.material_angle[j], 2 * pi));
+    if (theta < 0.5 * pi) continue;  // upper half
+    if (orientation * turning[j] < -turning_tolerance) {
+      const double before = (ring.points[j] - ring.points[(j + n - 1) % n]).norm();
+      const double after = (ring.points[(j + 1) % n] - ring.points[j]).norm();
+      length += 0.5 * (before + after);
+    }
+  }
+  return ring.half ? 2 * length : length;
+}
+
+WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
+                         double wall_thickness, const WrapThresholds& th) {
+  WrapMeasure m;
+  m.inverted_arc_m = inverted_arc_length(ring);
+  if (lower) m.wrapped_angle_deg = wrapped_angle_deg(ring, *lower, 1.1 * wall_thickness);
+  m.wrap_around = m.wrapped_angle_deg > th.min_wrapped_angle_deg &&
+                  m.inverted_arc_m > th.min_inverted_arc_fraction * pi * mean_radius;
+  return m;
+}
+
+Alternation alternation(const std::vector<double>& c, double tol) {
+  Alternation a;
+  const std::size_t n = c.size();
+  if (n < 3) return a;
+  // Linear fit over rings 1 … N−1 (the target-end ring is left out of the trend).
+  const std::size_t m = n - 1;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double x = static_cast<double>(i);
+    sx += x; sy += c[i]; sxx += x * x; sxy += x * c[i];
+  }
+  const double md = static_cast<double>(m);
+  const double denom = md * sxx - sx * sx;
+  const double slope = denom != 0 ? (md * sxy - sx * sy) / denom : 0.0;
+  const double icpt = (sy - slope * sx) / md;
+  std::vector<double> r(m);
+  for (std::size_t i = 0; i < m; ++i) r[i] = c[i] - (icpt + slope * static_cast<double>(i));
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    den += r[i] * r[i];
+    if (i + 1 < m) num += r[i] * r[i + 1];
+  }
+  a.lag1 = den > 1e-12 ? -num / den : 0.0;
+
+  int changes = 0, last_sign = 0;
+  double amp = 0;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double d = c[i + 1] - c[i];
+    amp += std::abs(d);
+    if (std::abs(d) < tol) continue;
+    const int s = d > 0 ? 1 : -1;
+    if (last_sign != 0 && s != last_sign) ++changes;
+    last_sign = s;
+  }
+  a.amplitude = amp / static_cast<double>(n - 1);
+  a.sign_change_fraction = static_cast<double>(changes) / static_cast<double>(n - 2);
+  a.index = std::max(0.0, a.lag1) * a.sign_change_fraction;
+  return a;
+}
+
+}  // namespace ringcrush::compare

@@ -1,0 +1,75 @@
+// Geometric measures of deformed rings and chains (THEORY.md §4.6), implemented once and fed
+// by every model (FE nodes, polygon-ring nodes, hinge-model crushes). Pure functions.
+//
+// Conventions: the chain axis is y, ring 1 on top, the impactor coming down from +y. A ring
+// shape is its mean line (or its outer surface, see RingShape::surface_offset) as points
+// ordered by material angle θ measured from the ring's top apex A (θ = 0) through the side
+// C (θ = π/2) to the bottom B (θ = π); a full ring continues to 2π, a half ring (the x ≥ 0
+// symmetry model of the thesis) stops at π and its lengths and angles are doubled.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace ringcrush::compare {
+
+struct RingShape {
+  std::vector<Eigen::Vector2d> points;   // current positions
+  std::vector<double> material_angle;    // θ of each point in the reference ring (rad)
+  bool half = false;                     // points cover θ ∈ [0, π] only (x = 0 symmetry)
+  // Added to the y-extent of the points to get the outer extent: t for a mean line,
+  // 0 when the points are already on the outer surface.
+  double surface_offset = 0.0;
+};
+
+// Extent H of the ring along the chain axis (outer surface).
+double axial_extent(const RingShape& ring);
+// Crush δ = H0 − H and crush ratio c = δ/D of a ring of outer diameter D.
+double crush(const RingShape& ring, double outer_diameter);
+double crush_ratio(const RingShape& ring, double outer_diameter);
+
+// Wrapped angle W of `upper` over `lower` (degrees): the material-angle extent of the cap of
+// `lower`'s points, contiguous from its top apex, that lie within `cap_distance` of
+// `upper`'s polyline (THEORY §4.6: 1.1 t between mean lines). Whole-ring angle (a half
+// ring's extent is doubled), in [0, 360].
+double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double cap_distance);
+
+// Inverted arc S (m): length of the ring's lower half (θ ∈ [π/2, 3π/2]) whose curvature
+// has reversed sign, i.e. whose turning angle at a point is opposite to the ring's overall
+// turning by more than `turning_tolerance` rad (default: a tenth of 2π/N, N points per
+// whole ring). Whole-ring length (doubled for a half ring).
+double inverted_arc_length(const RingShape& ring, double turning_tolerance = -1.0);
+
+struct WrapThresholds {
+  double min_wrapped_angle_deg = 45.0;   // W > 45° (supporting evidence)
+  double min_inverted_arc_fraction = 0.1;  // S > 0.1 π R: the deciding measure (THEORY §4.7)
+};
+
+struct WrapMeasure {
+  double wrapped_angle_deg = 0.0;
+  double inverted_arc_m = 0.0;
+  bool wrap_around = false;
+};
+
+// Wrap-around of ring i over ring i+1 (lower == nullptr for the last ring: W = 0).
+// Decided on S (the wrapped angle alone cannot tell a wrap from two flattened rings lying
+// on each other, THEORY §4.7), with W as supporting evidence.
+WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
+                         double wall_thickness, const WrapThresholds& thresholds = {});
+
+struct Alternation {
+  double lag1 = 0.0;               // A1: −Σ r_i r_{i+1} / Σ r_i² of the detrended crushes
+  double amplitude = 0.0;          // A2: mean |c_{i+1} − c_i|
+  double sign_change_fraction = 0.0;  // sign changes of c_{i+1} − c_i over N − 2
+  double index = 0.0;              // max(0, A1) × sign_change_fraction: 0 for monotone
+};
+
+// Alternation of the final crush ratios along the chain (ring 1 first). The detrending fit
+// excludes the last (target-end) ring; differences smaller than `difference_tolerance`
+// count neither as a rise nor as a fall. Chains of fewer than 3 rings give all zeros.
+Alternation alternation(const std::vector<double>& crush_ratio, double difference_tolerance = 0.05);
+
+// Threshold above which a chain is said to alternate (documented in README "Measures").
+inline constexpr double alternation_threshold = 0.3;
+
+}  // namespace ringcrush::compare

@@ -1,0 +1,165 @@
+// The measures of THEORY §4.6 on synthetic shapes with known answers: an intact ring, a
+// ring wrapped over the next, two flattened rings lying on each other, and crush
+// sequences that alternate, fall monotonically, or step.
+#include "compare/measures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace ringcrush::compare;
+using Eigen::Vector2d;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+constexpr double D = 0.0508, t = 0.0016, R = (D - t) / 2;
+
+// Mean line of a circle of radius r centred at (0, yc); points ordered from the top apex
+// toward +x (material angle θ), n points on the whole ring or n/2 + 1 on the half.
+RingShape circle(double yc, double r, int n, bool half = false) {
+  RingShape s;
+  s.half = half;
+  s.surface_offset = t;
+  const int count = half ? n / 2 + 1 : n;
+  for (int i = 0; i < count; ++i) {
+    const double th = 2 * pi * i / n;
+    s.points.emplace_back(r * std::sin(th), yc + r * std::cos(th));
+    s.material_angle.push_back(th);
+  }
+  return s;
+}
+
+// A flattened ring: a stadium (flats of half-length f joined by half circles of radius h)
+// centred at (0, yc); material angle proportional to arc length from the top centre.
+RingShape stadium(double yc, double f, double h, int n, bool half = false) {
+  RingShape s;
+  s.half = half;
+  s.surface_offset = t;
+  const double perimeter = 4 * f + 2 * pi * h;
+  const int count = half ? n / 2 + 1 : n;
+  for (int i = 0; i < count; ++i) {
+    double u = perimeter * i / n;
+    Vector2d p;
+    if (u < f) p = {u, yc + h};
+    else if ((u -= f) < pi * h) p = {f + h * std::sin(u / h), yc + h * std::cos(u / h)};
+    else if ((u -= pi * h) < 2 * f) p = {f - u, yc - h};
+    else if ((u -= 2 * f) < pi * h) p = {-f - h * std::sin(u / h), yc - h * std::cos(u / h)};
+    else p = {-f + (u - pi * h), yc + h};
+    s.points.push_back(p);
+    s.material_angle.push_back(2 * pi * i / n);
+  }
+  return s;
+}
+
+// Ring 1 wrapped over ring 2 (centred at (0, y2)): its bottom arc θ ∈ [π − β, π + β] lies on
+// the circle of radius R + t around ring 2's centre over ±ψmax (curvature inverted), the
+// rest is a half ellipse above joining the arc's ends.
+RingShape wrapped(double y2, double psi_max, double top, int n) {
+  RingShape s;
+  s.surface_offset = t;
+  const double beta = pi / 3, rho = R + t;
+  const double ye = y2 + rho * std::cos(psi_max), a = rho * std::sin(psi_max);
+  for (int i = 0; i < n; ++i) {
+    const double th = 2 * pi * i / n;
+    const double from_bottom = std::remainder(th - pi, 2 * pi);
+    Vector2d p;
+    if (std::abs(from_bottom) <= beta) {
+      const double psi = -from_bottom / beta * psi_max;
+      p = {rho * std::sin(psi), y2 + rho * std::cos(psi)};
+    } else {
+      const double u = std::remainder(th, 2 * pi) / (pi - beta);  // −1 … 1 over the top part
+      p = {a * std::sin(u * pi / 2), ye + (top - ye) * std::cos(u * pi / 2)};
+    }
+    s.points.push_back(p);
+    s.material_angle.push_back(th);
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Measures, IntactRingHasFullExtentAndNoInversion) {
+  const auto ring = circle(0.0, R, 96);
+  EXPECT_NEAR(axial_extent(ring), D, 1e-12);
+  EXPECT_NEAR(crush_ratio(ring, D), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(inverted_arc_length(ring), 0.0);
+  const auto half = circle(0.0, R, 96, true);
+  EXPECT_NEAR(axial_extent(half), D, 1e-12);
+  EXPECT_DOUBLE_EQ(inverted_arc_length(half), 0.0);
+}
+
+TEST(Measures, CrushOfAFlattenedRing) {
+  const double h = 0.004;  // mean-line half height: extent 2h + t
+  const auto ring = stadium(0.0, 0.03, h, 200);
+  EXPECT_NEAR(axial_extent(ring), 2 * h + t, 1e-12);
+  EXPECT_NEAR(crush(ring, D), D - 2 * h - t, 1e-12);
+}
+
+TEST(Measures, WrappedRingIsFlagged) {
+  const double y2 = -D;  // ring 2 one pitch below ring 1's original centre
+  const double psi_max = pi / 3;
+  const auto ring1 = wrapped(y2, psi_max, 0.0, 192);
+  const auto ring2 = circle(y2, R, 192);
+  // Inverted arc: the wrap arc of radius R + t over 2 ψmax (≈ 53 mm), less the two
+  // junction points whose turning is not reversed.
+  const double s = inverted_arc_length(ring1);
+  EXPECT_NEAR(s, 2 * psi_max * (R + t), 0.08 * 2 * psi_max * (R + t));
+  // Ring 2's points within 1.1 t of ring 1 span ±ψmax about its apex.
+  const double w = wrapped_angle_deg(ring1, ring2, 1.1 * t);
+  EXPECT_NEAR(w, 120.0, 4.0);
+  const auto m = measure_wrap(ring1, &ring2, R, t);
+  EXPECT_TRUE(m.wrap_around);
+  // Ring 2 itself is intact: no inversion, no wrap over anything.
+  EXPECT_FALSE(measure_wrap(ring2, nullptr, R, t).wrap_around);
+}
+
+// THEORY §4.7: two flattened rings lying flat on each other give a large W but no inverted
+// arc, and must not count as a wrap.
+TEST(Measures, FlattenedPairIsNotAWrap) {
+  const double h = 0.003, f = 0.03;
+  const auto upper = stadium(0.0, f, h, 200);
+  const auto lower = stadium(-2 * h - t, f, h, 200);
+  const auto m = measure_wrap(upper, &lower, R, t);
+  EXPECT_GT(m.wrapped_angle_deg, 100.0);
+  EXPECT_LT(m.inverted_arc_m, 1e-9);
+  EXPECT_FALSE(m.wrap_around);
+}
+
+TEST(Measures, HalfRingMeasuresEqualTheWholeRing) {
+  const double h = 0.003, f = 0.03;
+  const auto upper_full = stadium(0.0, f, h, 200), lower_full = stadium(-2 * h - t, f, h, 200);
+  const auto upper_half = stadium(0.0, f, h, 200, true), lower_half = stadium(-2 * h - t, f, h, 200, true);
+  EXPECT_NEAR(wrapped_angle_deg(upper_half, lower_half, 1.1 * t),
+              wrapped_angle_deg(upper_full, lower_full, 1.1 * t), 2.0);
+  EXPECT_NEAR(axial_extent(upper_half), axial_extent(upper_full), 1e-12);
+}
+
+TEST(Measures, RejectsMalformedShapes) {
+  RingShape bad;
+  bad.points = {{0, 0}, {1, 0}};
+  bad.material_angle = {0, 1};
+  EXPECT_THROW(axial_extent(bad), std::invalid_argument);
+}
+
+TEST(Alternation, AlternatingChainScoresHigh) {
+  const auto a = alternation({0.9, 0.1, 0.85, 0.15, 0.8, 0.3});
+  EXPECT_GT(a.lag1, 0.5);
+  EXPECT_DOUBLE_EQ(a.sign_change_fraction, 1.0);
+  EXPECT_GT(a.index, alternation_threshold);
+  EXPECT_NEAR(a.amplitude, (0.8 + 0.75 + 0.7 + 0.65 + 0.5) / 5, 1e-12);
+}
+
+TEST(Alternation, MonotoneAndStepChainsScoreZero) {
+  // Linear fall (plated chain) and the shock model's step: no alternation.
+  EXPECT_DOUBLE_EQ(alternation({0.9, 0.8, 0.7, 0.6, 0.5, 0.4}).index, 0.0);
+  const auto step = alternation({0.937, 0.937, 0.937, 0.902, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(step.sign_change_fraction, 0.0);
+  EXPECT_DOUBLE_EQ(step.index, 0.0);
+  EXPECT_DOUBLE_EQ(alternation({0.5, 0.5}).index, 0.0);  // too short to tell
+}
+
+TEST(Alternation, SmallRipplesBelowToleranceDoNotCount) {
+  const auto a = alternation({0.60, 0.62, 0.60, 0.62, 0.60, 0.62});
+  EXPECT_DOUBLE_EQ(a.sign_change_fraction, 0.0);
+  EXPECT_DOUBLE_EQ(a.index, 0.0);
+}
