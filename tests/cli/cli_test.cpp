@@ -1,0 +1,130 @@
+// End-to-end tests of the `ringcrush` command line: help, usage errors, the formula run and
+// its results directory, and bad scenes that must exit non-zero and write nothing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct CommandRun {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+CommandRun ringcrush(const std::string& args) {
+  const std::string cmd = std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+const std::string scenes = std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/";
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("ringcrush_cli_test_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+bool empty_dir(const fs::path& p) { return fs::is_empty(p); }
+}  // namespace
+
+TEST(Cli, HelpListsTheSubcommands) {
+  const CommandRun r = ringcrush("--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("formula"), std::string::npos);
+  EXPECT_NE(r.output.find("validate"), std::string::npos);
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* sub : {"formula", "validate"}) {
+    const CommandRun r = ringcrush(std::string(sub) + " --help");
+    EXPECT_EQ(r.status, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, BadUsageExitsNonZeroWithAMessage) {
+  CommandRun r = ringcrush("");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("subcommand"), std::string::npos) << r.output;
+  r = ringcrush("explode");
+  EXPECT_NE(r.status, 0);
+  r = ringcrush("formula --points 1 " + scenes + "thesis_static.toml");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--points"), std::string::npos) << r.output;
+  r = ringcrush("formula --D 0.05");  // neither scene nor a complete set of flags
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--t"), std::string::npos) << r.output;
+  r = ringcrush("formula --D 0.05 --t 0.03 --L 0.01 --sigma0 2e8");  // t ≥ D/2
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("D/2"), std::string::npos) << r.output;
+}
+
+TEST(Cli, FormulaWritesACompleteResultsDirectory) {
+  const fs::path dir = scratch("formula");
+  const CommandRun r = ringcrush("formula " + scenes + "thesis_static.toml -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("P0 = 8 M0/d = 355.122 N"), std::string::npos) << r.output;
+  for (const char* f : {"summary.json", "history.csv", "load_deflection.svg"})
+    EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
+  std::ifstream in(dir / "out" / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["model"], "formula");
+  EXPECT_EQ(summary["scene"], "thesis_static");
+  EXPECT_EQ(summary["analysis"], "static");
+  EXPECT_NEAR(summary["M0_Nm"].get<double>(), 2.184, 1e-9);
+  EXPECT_NEAR(summary["P0_N"].get<double>(), 355.122, 1e-3);
+  for (const char* key : {"wall_time_s", "steps", "max_force_N", "final_deflection_m"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+  std::ifstream csv(dir / "out" / "history.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("deflection_m,", 0), 0u) << header;
+}
+
+TEST(Cli, FormulaFromFlags) {
+  const CommandRun r = ringcrush("formula --D 0.050 --t 0.0016 --L 0.100 --sigma0 269e6 --Ep 1.65e9 --plane-strain --alpha 1 2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("P0 = 8 M0/d = 3285.8"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("P_RW(2)_N"), std::string::npos);
+}
+
+TEST(Cli, BadSceneExitsNonZeroAndWritesNothing) {
+  const fs::path dir = scratch("bad_scene");
+  const fs::path bad = dir / "bad.toml";
+  {
+    std::ifstream in(scenes + "thesis_static.toml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("wall_thickness_m = 0.0016"), 25, "wall_thickness_m = 0.0300");
+    std::ofstream(bad) << text;
+  }
+  const fs::path out = dir / "results";
+  fs::create_directories(out);
+  CommandRun r = ringcrush("formula " + bad.string() + " -o " + (out / "run").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("bad.toml"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rings.wall_thickness_m"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("t < D/2"), std::string::npos) << r.output;
+  EXPECT_TRUE(empty_dir(out));
+  r = ringcrush("validate " + bad.string());
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST(Cli, ValidateAcceptsEveryShippedScene) {
+  const CommandRun r = ringcrush("validate " + scenes + "*.toml");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("test30_welded.toml: ok"), std::string::npos);
+}
