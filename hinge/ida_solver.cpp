@@ -9,6 +9,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -75,6 +76,8 @@ struct IdaSolver::Impl {
   SUNLinearSolver linear_solver = nullptr;
   IdaOptions options;
   std::string last_message;
+  DaeSystem* system = nullptr;
+  std::vector<int> masked;  // per root, see IdaSolver::reinit
 
   ~Impl() {
     if (ida) IDAFree(&ida);
@@ -93,8 +96,8 @@ struct IdaSolver::Impl {
 
   static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
     try {
-      static_cast<DaeSystem*>(user)->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
-                                              N_VGetArrayPointer(r));
+      static_cast<Impl*>(user)->system->residual(t, N_VGetArrayPointer(y),
+                                                 N_VGetArrayPointer(yp), N_VGetArrayPointer(r));
       return 0;
     } catch (...) {
       return -1;  // unrecoverable: IDA stops and reports IDA_RES_FAIL
@@ -102,14 +105,28 @@ struct IdaSolver::Impl {
   }
 
   static int roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* user) {
-    static_cast<DaeSystem*>(user)->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
+    auto* self = static_cast<Impl*>(user);
+    try {
+      self->system->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
+    } catch (...) {
+      return -1;  // IDA_RTFUNC_FAIL
+    }
+    // Masking: a just-fired root reads exactly zero (inactive for IDA) until it has left
+    // zero; IDA then re-activates it without reporting a crossing.
+    const double tol = self->options.root_mask_tolerance;
+    for (std::size_t i = 0; i < self->masked.size(); ++i) {
+      const int m = self->masked[i];
+      if (m == 0) continue;
+      if (std::abs(g[i]) > tol) self->masked[i] = 0;
+      else g[i] = (m == 1 || m == -1) ? m * tol : 0.0;
+    }
     return 0;
   }
 
   static int jacobian(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector, SUNMatrix J,
                       void* user, N_Vector, N_Vector, N_Vector) {
     SUNMatZero(J);
-    auto* system = static_cast<DaeSystem*>(user);
+    auto* system = static_cast<Impl*>(user)->system;
     if (SUNMatGetID(J) == SUNMATRIX_BAND) {
       BandSink sink(J);
       system->jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), sink);
@@ -134,6 +151,7 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
     throw std::invalid_argument("IdaSolver: y0 and yp0 must match the system size");
   auto& m = *impl_;
   m.options = options;
+  m.system = &system;
   m.check(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
   m.y = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
   m.yp = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
@@ -143,7 +161,7 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
   m.ida = check_alloc(IDACreate(m.context), "IDACreate");
   m.check(IDASetErrHandlerFn(m.ida, &Impl::error_handler, &m), "IDASetErrHandlerFn");
   m.check(IDAInit(m.ida, &Impl::residual, t0, m.y, m.yp), "IDAInit");
-  m.check(IDASetUserData(m.ida, &system), "IDASetUserData");
+  m.check(IDASetUserData(m.ida, &m), "IDASetUserData");
   m.check(IDASStolerances(m.ida, options.relative_tolerance, options.absolute_tolerance),
           "IDASStolerances");
   m.check(IDASetMaxNumSteps(m.ida, options.max_steps), "IDASetMaxNumSteps");
@@ -195,7 +213,23 @@ void IdaSolver::calc_initial_conditions(double tout1) {
 }
 
 void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector<double>& yp) {
+  reinit(t, y, yp, std::vector<int>(system_.root_count(), 0));
+}
+
+const std::vector<int>& IdaSolver::root_mask() const { return impl_->masked; }
+
+void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector<double>& yp,
+                       const std::vector<int>& masked) {
   auto& m = *impl_;
+  if (y.size() != y_.size() || yp.size() != y_.size())
+    throw std::invalid_argument("IdaSolver::reinit: state size does not match the system");
+  if (!masked.empty() && masked.size() != system_.root_count())
+    throw std::invalid_argument("IdaSolver::reinit: one mask entry per root function");
+  // IDAReInit zeroes IDA's counters: keep the totals.
+  const IdaStatistics s = statistics();
+  before_restarts_ = s;
+  ++restarts_;
+  m.masked = masked;
   std::copy(y.begin(), y.end(), N_VGetArrayPointer(m.y));
   std::copy(yp.begin(), yp.end(), N_VGetArrayPointer(m.yp));
   m.check(IDAReInit(m.ida, t, m.y, m.yp), "IDAReInit");
@@ -239,6 +273,7 @@ IdaSolver::Step IdaSolver::step(double tout) { return run(tout, IDA_ONE_STEP); }
 IdaStatistics IdaSolver::statistics() const {
   auto& m = *impl_;
   IdaStatistics s;
+  const IdaStatistics& b = before_restarts_;
   m.check(IDAGetNumSteps(m.ida, &s.steps), "IDAGetNumSteps");
   m.check(IDAGetNumResEvals(m.ida, &s.residual_evaluations), "IDAGetNumResEvals");
   m.check(IDAGetNumJacEvals(m.ida, &s.jacobian_evaluations), "IDAGetNumJacEvals");
@@ -247,6 +282,13 @@ IdaStatistics IdaSolver::statistics() const {
   m.check(IDAGetNumNonlinSolvConvFails(m.ida, &s.nonlinear_convergence_failures),
           "IDAGetNumNonlinSolvConvFails");
   if (system_.root_count() > 0) m.check(IDAGetNumGEvals(m.ida, &s.root_evaluations), "IDAGetNumGEvals");
+  s.steps += b.steps;
+  s.residual_evaluations += b.residual_evaluations;
+  s.jacobian_evaluations += b.jacobian_evaluations;
+  s.nonlinear_iterations += b.nonlinear_iterations;
+  s.error_test_failures += b.error_test_failures;
+  s.nonlinear_convergence_failures += b.nonlinear_convergence_failures;
+  s.root_evaluations += b.root_evaluations;
   return s;
 }
 

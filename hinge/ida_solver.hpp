@@ -25,6 +25,8 @@ class IdaError : public std::runtime_error {
   int flag_;
 };
 
+inline constexpr int root_mask_inactive = 2;
+
 struct IdaOptions {
   double relative_tolerance = 1e-8;
   double absolute_tolerance = 1e-10;
@@ -34,6 +36,9 @@ struct IdaOptions {
   long max_steps = 100000;   // per call to advance()
   double max_step = 0.0;     // 0: no bound
   bool suppress_algebraic_error_test = false;  // IDASetSuppressAlg, for multipliers
+  // A masked root function (see IdaSolver::reinit) is reported to IDA as exactly zero until
+  // its magnitude exceeds this value; models scale their root functions to O(1).
+  double root_mask_tolerance = 1e-9;
 };
 
 struct IdaStatistics {
@@ -61,6 +66,18 @@ class IdaSolver {
 
   // Restart after a discontinuity (mode switch, velocity jump) at the current time.
   void reinit(double t, const std::vector<double>& y, const std::vector<double>& yp);
+  // Restart with masked root functions. A root that has just fired sits at zero after the
+  // mode switch and would fire again at once (chattering); masked, it is held at a value of
+  // its expected sign until |g_i| exceeds root_mask_tolerance:
+  //   mask[i] = 0       not masked;
+  //   mask[i] = +1/−1   masked, expected to leave zero upward/downward: held at ±tolerance,
+  //                     so leaving the *other* way is still a sign change that IDA locates;
+  //   mask[i] = root_mask_inactive  masked without expectation: held at exactly 0, which IDA
+  //                     treats as inactive until it leaves zero.
+  void reinit(double t, const std::vector<double>& y, const std::vector<double>& yp,
+              const std::vector<int>& mask);
+  // The current mask (entries drop to 0 as roots are released).
+  const std::vector<int>& root_mask() const;
 
   void set_stop_time(double t_stop);
   // +1 only rising, −1 only falling, 0 both (IDASetRootDirection).
@@ -80,7 +97,9 @@ class IdaSolver {
   double time() const { return t_; }
   const std::vector<double>& y() const { return y_; }
   const std::vector<double>& yp() const { return yp_; }
+  // Counters summed over every restart (IDAReInit resets IDA's own counters).
   IdaStatistics statistics() const;
+  long restarts() const { return restarts_; }
 
  private:
   Step run(double tout, int mode);
@@ -91,6 +110,8 @@ class IdaSolver {
   DaeSystem& system_;
   double t_;
   std::vector<double> y_, yp_;
+  IdaStatistics before_restarts_;
+  long restarts_ = 0;
 };
 
 }  // namespace ringcrush::hinge

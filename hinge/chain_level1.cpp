@@ -1,0 +1,368 @@
+// Level 1: a chain of rigid–plastic DeRuntz–Hodge/Redwood rings with their distributed
+// inertia J(φ), separated by plates (THEORY §4.4 "Level 1", §1.3).
+//
+// Generalised coordinates: the mechanism angles φ_i (crush δ_i = d sin φ_i) and, for a free
+// far end, the displacement u_N of the far side of the last ring. Body b (impactor b = 0,
+// plates 1…N−1, far side N) moves at u̇_b = u̇_N + Σ_{j≥b} d cos φ_j φ̇_j; ring i's centre
+// at the mean of its two sides. Lagrange's equations (each velocity coefficient depends on
+// its own φ_j only, so the Christoffel terms reduce to the ȧ·q̇ products):
+//
+//   𝓜(q) q̈ = −Σ_b m_b a_b (ȧ_b·q̇) − Σ_i m_r w_i (ẇ_i·q̇) − ½ J′(φ_i) φ̇_i² − λ,
+//
+// λ_i = 8M0 h(φ_i) while ring i crushes (φ̇_i > 0); a rigid ring has φ̇_i = 0 and a reaction
+// 0 ≤ λ_i ≤ 8M0 h(φ_i); a locked ring (φ_i = φ_L, inner walls in contact) has φ̇_i = 0 and
+// any λ_i ≥ 0. Which rings crush is a complementarity problem, solved at events (a ring
+// stops, a rigid ring reaches its collapse force) — not a penalty. The first contact and
+// every lock-up are perfectly plastic impacts (velocity-level complementarity); their
+// kinetic-energy losses are booked as impact energy.
+//
+// DAE form (IDA): y = [q, q̇, λ], λ algebraic, residual rows q′ − q̇, 𝓜 q̇′ − b + λ and, per
+// ring, λ_i − 8M0h(φ_i) (crushing) or φ̈_i (rigid, locked); IDACalcIC finds λ at restarts.
+// ODE form (Odeint): q̈ from the same equations with λ eliminated; λ components idle.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "chain_1d.hpp"
+#include "mass_lcp.hpp"
+
+namespace ringcrush::hinge {
+namespace {
+
+enum class RingMode { Crushing, Rigid, Locked };
+
+class Level1Chain final : public HybridSystem {
+ public:
+  explicit Level1Chain(const ChainInput& in) : in_(in), law_(in.ring) {
+    n_ = in.rings;
+    free_end_ = in.far_end == ChainFarEnd::Free;
+    nq_ = n_ + (free_end_ ? 1 : 0);
+    body_mass_.assign(n_ + 1, in.joint == ChainJoint::Plates ? in.plate_mass_kg : 0.0);
+    body_mass_[0] = in.impactor_mass_kg;
+    body_mass_[n_] = 0.0;  // target, or nothing behind the last ring
+    d_ = law_.mean_diameter();
+    phi_lock_ = law_.lock_angle();
+    vref_ = in.impactor_velocity_m_s;
+    mode_.assign(n_, RingMode::Rigid);
+    double total = in.impactor_mass_kg + n_ * law_.mass_kg;
+    for (int b = 1; b < n_; ++b) total += body_mass_[b];
+    v_common_ = free_end_ ? in.impactor_mass_kg * vref_ / total : 0.0;
+    m_.resize(nq_, nq_);
+    b_.resize(nq_);
+    a_.resize(nq_);
+    w_.resize(nq_);
+  }
+
+  std::size_t size() const override { return 2 * nq_ + n_; }
+  std::size_t root_count() const override { return 3 * n_ + 1; }
+  std::vector<double> differential_mask() const override {
+    std::vector<double> id(size(), 1.0);
+    for (int i = 0; i < n_; ++i) id[2 * nq_ + i] = 0.0;
+    return id;
+  }
+
+  // 𝓜(q) and b(q, q̇) (the right-hand side without λ).
+  void assemble(const double* q, const double* qd) {
+    m_.setZero();
+    b_.setZero();
+    std::vector<double>& c = c_;
+    std::vector<double>& sq = sq_;  // d sin φ_j φ̇_j²
+    c.resize(n_);
+    sq.resize(n_);
+    for (int j = 0; j < n_; ++j) {
+      c[j] = d_ * std::cos(q[j]);
+      sq[j] = d_ * std::sin(q[j]) * qd[j] * qd[j];
+    }
+    // Bodies: a_b[j] = c_j for j ≥ b; ȧ_b·q̇ = −Σ_{j≥b} d sin φ_j φ̇_j².
+    double tail = 0.0;  // Σ_{j≥b} sq_j, built from the far end
+    for (int b = n_; b >= 0; --b) {
+      if (b < n_) tail += sq[b];
+      const double mb = body_mass_[b];
+      if (mb == 0.0) continue;
+      a_.setZero();
+      for (int j = b; j < n_; ++j) a_(j) = c[j];
+      if (free_end_) a_(n_) = 1.0;
+      m_.noalias() += mb * a_ * a_.transpose();
+      b_ += mb * tail * a_;  // −m a (ȧ·q̇) = +m a Σ sq
+    }
+    // Ring centres: w_i = (a_i + a_{i+1})/2.
+    tail = 0.0;
+    for (int i = n_ - 1; i >= 0; --i) {
+      w_.setZero();
+      for (int j = i + 1; j < n_; ++j) w_(j) = c[j];
+      w_(i) = 0.5 * c[i];
+      if (free_end_) w_(n_) = 1.0;
+      const double wdot = -(tail + 0.5 * sq[i]);
+      m_.noalias() += law_.mass_kg * w_ * w_.transpose();
+      b_ -= law_.mass_kg * wdot * w_;
+      tail += sq[i];
+    }
+    for (int i = 0; i < n_; ++i) {
+      m_(i, i) += law_.inertia(q[i]);
+      b_(i) -= 0.5 * law_.inertia_derivative(q[i]) * qd[i] * qd[i];
+    }
+  }
+
+  // Accelerations and ring forces in the current modes (after assemble()).
+  void accelerations(const double* q, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda) {
+    Eigen::VectorXd r = b_;
+    lambda = Eigen::VectorXd::Zero(n_);
+    for (int i = 0; i < n_; ++i)
+      if (mode_[i] == RingMode::Crushing) {
+        lambda(i) = law_.generalized_force(q[i]);
+        r(i) -= lambda(i);
+      }
+    std::vector<char> comp(nq_, 0), zero(nq_, 0);
+    for (int i = 0; i < n_; ++i) zero[i] = mode_[i] != RingMode::Crushing;
+    const auto lcp = solve_mass_lcp(m_, r, comp, zero);  // no complementarity: a linear solve
+    qdd = lcp.x;
+    for (int i = 0; i < n_; ++i)
+      if (mode_[i] != RingMode::Crushing) lambda(i) = -lcp.mu(i);
+  }
+
+  void rhs(double, const double* y, double* f) override {
+    const double* q = y;
+    const double* qd = y + nq_;
+    assemble(q, qd);
+    Eigen::VectorXd qdd, lambda;
+    accelerations(q, qdd, lambda);
+    for (int j = 0; j < nq_; ++j) {
+      f[j] = qd[j];
+      f[nq_ + j] = qdd(j);
+    }
+    for (int i = 0; i < n_; ++i) f[2 * nq_ + i] = 0.0;
+  }
+
+  void residual(double, const double* y, const double* yp, double* r) override {
+    const double* q = y;
+    const double* qd = y + nq_;
+    const double* lambda = y + 2 * nq_;
+    assemble(q, qd);
+    Eigen::Map<const Eigen::VectorXd> qdd(yp + nq_, nq_);
+    const Eigen::VectorXd mq = m_ * qdd;
+    for (int j = 0; j < nq_; ++j) {
+      r[j] = yp[j] - qd[j];
+      r[nq_ + j] = mq(j) - b_(j) + (j < n_ ? lambda[j] : 0.0);
+    }
+    for (int i = 0; i < n_; ++i)
+      r[2 * nq_ + i] = mode_[i] == RingMode::Crushing ? lambda[i] - law_.generalized_force(q[i])
+                                                      : yp[nq_ + i] / vref_ * d_;
+  }
+
+  // Per ring i: [3i] crushing: φ̇ d/V (stops when it falls to 0); rigid: margin to the
+  // collapse force (starts crushing when it falls to 0); [3i+1] rigid or locked: the ring
+  // force λ_i (tension when it falls below 0); [3i+2] crushing: φ_L − φ (lock-up).
+  // Last: impactor velocity relative to the final common velocity (arrest).
+  void event_roots(double, const double* y, double* g) override {
+    const double* q = y;
+    const double* qd = y + nq_;
+    assemble(q, qd);
+    Eigen::VectorXd qdd, lambda;
+    accelerations(q, qdd, lambda);
+    for (int i = 0; i < n_; ++i) {
+      const double gi = law_.generalized_force(q[i]);
+      g[3 * i] = mode_[i] == RingMode::Crushing ? qd[i] * d_ / vref_
+                 : mode_[i] == RingMode::Rigid  ? (gi - lambda(i)) / gi
+                                                : 1.0;
+      g[3 * i + 1] = mode_[i] == RingMode::Crushing ? 1.0 : lambda(i) / gi;
+      g[3 * i + 2] = mode_[i] == RingMode::Crushing ? phi_lock_ - q[i] : 1.0;
+    }
+    g[3 * n_] = (impactor_velocity(q, qd) - v_common_) / vref_;
+  }
+
+  double impactor_velocity(const double* q, const double* qd) const {
+    double v = free_end_ ? qd[n_] : 0.0;
+    for (int j = 0; j < n_; ++j) v += d_ * std::cos(q[j]) * qd[j];
+    return v;
+  }
+
+  // After a restart every ring root is expected to grow away from zero: a crushing ring's
+  // rate, a rigid ring's margin below collapse, its (compressive) force, the distance to lock.
+  int root_departure(std::size_t r) const override {
+    if (r == static_cast<std::size_t>(3 * n_)) return arrest_time_ < 0.0 ? 1 : -1;
+    return 1;
+  }
+
+  EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
+    double* q = y.data();
+    double* qd = y.data() + nq_;
+    bool impact = false;
+    for (int i = 0; i < n_; ++i) {
+      if (fired[3 * i + 1] < 0)
+        throw std::runtime_error(fmt::format(
+            "Level 1: ring {} would carry tension at t = {:.9g} s; contact separation is not "
+            "modelled at Level 1 (use Level 0)", i + 1, t));
+      if (fired[3 * i + 2] < 0 && mode_[i] == RingMode::Crushing) {
+        mode_[i] = RingMode::Locked;
+        q[i] = phi_lock_;
+        impact = true;
+        log(t, "ring_locked", i, "inner walls in contact: plastic impact");
+      }
+      if (fired[3 * i] < 0 && mode_[i] == RingMode::Crushing) {
+        qd[i] = 0.0;
+        mode_[i] = RingMode::Rigid;
+        log(t, "ring_stopped", i, "crush rate fell to zero");
+      }
+    }
+    if (fired[3 * n_] < 0 && arrest_time_ < 0.0) {
+      arrest_time_ = t;
+      log(t, "impactor_arrested", -1, free_end_ ? "impactor at the common velocity" : "impactor at rest");
+    }
+    if (impact) apply_impact(q, qd);
+    select_modes(q, qd, t);
+    for (int i = 0; i < n_; ++i)
+      if (mode_[i] == RingMode::Crushing) return EventAction::Continue;
+    if (arrest_time_ < 0.0) arrest_time_ = t;
+    log(t, "chain_at_rest", -1, free_end_ ? "no ring crushes: rigid-body motion" : "no ring crushes");
+    return EventAction::Stop;
+  }
+
+  // Perfectly plastic impact: the velocities after it minimise the kinetic energy of the
+  // velocity change subject to φ̇ ≥ 0 (φ̇ = 0 for locked rings).
+  void apply_impact(double* q, double* qd) {
+    assemble(q, qd);
+    Eigen::Map<Eigen::VectorXd> v(qd, nq_);
+    const double before = 0.5 * v.dot(m_ * v);
+    const Eigen::VectorXd p = m_ * v;
+    std::vector<char> comp(nq_, 0), zero(nq_, 0);
+    for (int i = 0; i < n_; ++i) {
+      comp[i] = 1;
+      zero[i] = mode_[i] == RingMode::Locked;
+    }
+    const auto lcp = solve_mass_lcp(m_, p, comp, zero);
+    v = lcp.x;
+    for (int i = 0; i < n_; ++i) {
+      if (lcp.held[i] && mode_[i] != RingMode::Locked) mode_[i] = RingMode::Rigid;
+      if (!lcp.held[i]) mode_[i] = RingMode::Crushing;
+      if (lcp.held[i]) qd[i] = 0.0;
+    }
+    assemble(q, qd);
+    impact_loss_ += before - 0.5 * v.dot(m_ * v);
+  }
+
+  // Acceleration-level complementarity for the rings at rest (not locked): each either
+  // crushes (φ̈ ≥ 0, λ = 8M0h) or stays rigid (φ̈ = 0, λ ≤ 8M0h).
+  void select_modes(const double* q, const double* qd, double t) {
+    assemble(q, qd);
+    Eigen::VectorXd r = b_;
+    std::vector<char> comp(nq_, 0), zero(nq_, 0);
+    for (int i = 0; i < n_; ++i) {
+      if (mode_[i] == RingMode::Locked) {
+        zero[i] = 1;
+        continue;
+      }
+      r(i) -= law_.generalized_force(q[i]);
+      if (mode_[i] == RingMode::Rigid || qd[i] <= 0.0) comp[i] = 1;
+    }
+    const auto lcp = solve_mass_lcp(m_, r, comp, zero);
+    for (int i = 0; i < n_; ++i) {
+      if (!comp[i]) continue;
+      const RingMode next = lcp.held[i] ? RingMode::Rigid : RingMode::Crushing;
+      if (next != mode_[i]) {
+        if (next == RingMode::Crushing) log(t, "ring_crushing", i, "collapse load reached");
+        mode_[i] = next;
+      }
+    }
+  }
+
+  std::vector<double> initial_state() {
+    std::vector<double> y(size(), 0.0);
+    // First contact: the impactor's momentum M V a_0 shared by a plastic impact.
+    double* q = y.data();
+    double* qd = y.data() + nq_;
+    assemble(q, qd);
+    Eigen::VectorXd a0 = Eigen::VectorXd::Zero(nq_);
+    for (int j = 0; j < n_; ++j) a0(j) = d_;
+    if (free_end_) a0(n_) = 1.0;
+    const double M = in_.impactor_mass_kg, V = in_.impactor_velocity_m_s;
+    const Eigen::VectorXd p = M * V * a0;
+    std::vector<char> comp(nq_, 0), zero(nq_, 0);
+    for (int i = 0; i < n_; ++i) comp[i] = 1;
+    const auto lcp = solve_mass_lcp(m_, p, comp, zero);
+    for (int j = 0; j < nq_; ++j) qd[j] = lcp.x(j);
+    for (int i = 0; i < n_; ++i) mode_[i] = lcp.held[i] ? RingMode::Rigid : RingMode::Crushing;
+    const Eigen::Map<Eigen::VectorXd> v(qd, nq_);
+    impact_loss_ = 0.5 * M * V * V - 0.5 * v.dot(m_ * v);
+    select_modes(q, qd, 0.0);
+    // λ: consistent values (IDACalcIC refines them).
+    Eigen::VectorXd qdd, lambda;
+    assemble(q, qd);
+    accelerations(q, qdd, lambda);
+    for (int i = 0; i < n_; ++i) y[2 * nq_ + i] = lambda(i);
+    return y;
+  }
+
+  void record(double t, const std::vector<double>& y, ChainHistory& h) {
+    const double* q = y.data();
+    const double* qd = y.data() + nq_;
+    assemble(q, qd);
+    Eigen::VectorXd qdd, lambda;
+    accelerations(q, qdd, lambda);
+    double u0 = free_end_ ? q[n_] : 0.0, v0 = free_end_ ? qd[n_] : 0.0, a0 = free_end_ ? qdd(n_) : 0.0;
+    double pl = 0.0;
+    for (int j = 0; j < n_; ++j) {
+      const double c = std::cos(q[j]), s = std::sin(q[j]);
+      u0 += d_ * s;
+      v0 += d_ * c * qd[j];
+      a0 += d_ * (c * qdd(j) - s * qd[j] * qd[j]);
+      h.ring_crush_m[j].push_back(d_ * s);
+      const double w = law_.plastic_energy_at_angle(q[j]);
+      h.ring_plastic_j[j].push_back(w);
+      pl += w;
+    }
+    Eigen::Map<const Eigen::VectorXd> v(qd, nq_);
+    h.time_s.push_back(t);
+    h.impactor_displacement_m.push_back(u0);
+    h.impactor_velocity_m_s.push_back(v0);
+    h.impactor_force_n.push_back(-in_.impactor_mass_kg * a0);
+    h.kinetic_j.push_back(0.5 * v.dot(m_ * v));
+    h.elastic_j.push_back(0.0);
+    h.plastic_j.push_back(pl);
+    h.impact_loss_j.push_back(impact_loss_);
+  }
+
+  double arrest_time() const { return arrest_time_; }
+  std::vector<ChainEvent> events;
+
+ private:
+  void log(double t, const char* kind, int ring, std::string detail) {
+    events.push_back({t, kind, ring, std::move(detail)});
+  }
+
+  ChainInput in_;
+  RingLaw law_;
+  int n_ = 0, nq_ = 0;
+  bool free_end_ = false;
+  std::vector<double> body_mass_;
+  double d_ = 0, phi_lock_ = 0, vref_ = 1, v_common_ = 0;
+  std::vector<RingMode> mode_;
+  double impact_loss_ = 0.0, arrest_time_ = -1.0;
+  Eigen::MatrixXd m_;
+  Eigen::VectorXd b_, a_, w_;
+  std::vector<double> c_, sq_;
+};
+
+}  // namespace
+
+ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options) {
+  input.validate();
+  Level1Chain model(input);
+  ChainResult result;
+  auto& h = result.history;
+  h.ring_crush_m.assign(input.rings, {});
+  h.ring_plastic_j.assign(input.rings, {});
+  std::vector<double> y = model.initial_state();
+  result.initial_kinetic_energy_j =
+      0.5 * input.impactor_mass_kg * input.impactor_velocity_m_s * input.impactor_velocity_m_s;
+  result.outcome = run_hybrid(model, 0.0, y, options,
+                              [&](double t, const std::vector<double>& s) { model.record(t, s, h); });
+  result.events = std::move(model.events);
+  result.arrest_time_s = model.arrest_time();
+  for (int i = 0; i < input.rings; ++i) result.final_crush_m.push_back(h.ring_crush_m[i].back());
+  return result;
+}
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,158 @@
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "hybrid_system.hpp"
+#include "ida_solver.hpp"
+#include "odeint_integrator.hpp"
+
+namespace ringcrush::hinge {
+namespace {
+
+// Roots at (or within the mask tolerance of) zero after a restart are masked.
+std::vector<int> near_zero_roots(HybridSystem& system, double t, const std::vector<double>& y,
+                                 double tolerance) {
+  std::vector<double> g(system.root_count());
+  if (g.empty()) return {};
+  system.event_roots(t, y.data(), g.data());
+  std::vector<int> masked(g.size(), 0);
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (std::abs(g[i]) > tolerance) continue;
+    const int expected = system.root_departure(i);
+    masked[i] = expected != 0 ? expected : root_mask_inactive;
+  }
+  return masked;
+}
+
+bool has_algebraic(const std::vector<double>& mask) {
+  for (double m : mask)
+    if (m == 0.0) return true;
+  return false;
+}
+
+HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
+                      const HybridOptions& o, const HybridSampler& sample) {
+  const std::size_t n = system.size();
+  std::vector<double> yp(n);
+  system.rhs(t0, y.data(), yp.data());
+  IdaOptions io;
+  io.relative_tolerance = o.relative_tolerance;
+  io.absolute_tolerance = o.absolute_tolerance;
+  io.max_steps = o.max_steps_per_segment;
+  io.max_step = o.max_step;
+  io.root_mask_tolerance = o.root_mask_tolerance;
+  const bool algebraic = has_algebraic(system.differential_mask());
+  io.suppress_algebraic_error_test = algebraic;
+  IdaSolver ida(system, t0, y, yp, io);
+  // IDACalcIC needs a first output time for its scale: one hundredth of the run.
+  const double ic_horizon = 1e-2 * (o.end_time - t0);
+  auto restart = [&](double t, const std::vector<double>& state) {
+    std::vector<double> deriv(n);
+    system.rhs(t, state.data(), deriv.data());
+    ida.reinit(t, state, deriv, near_zero_roots(system, t, state, o.root_mask_tolerance));
+    if (algebraic) ida.calc_initial_conditions(t + ic_horizon);
+    ida.set_stop_time(o.end_time);
+  };
+  restart(t0, y);
+  if (sample) sample(t0, ida.y());
+
+  HybridOutcome out;
+  long events = 0;
+  while (true) {
+    const auto s = ida.step(o.end_time);
+    y = ida.y();
+    if (sample) sample(s.t, y);
+    out.end_time = s.t;
+    if (s.root_found) {
+      ++events;
+      if (events > o.max_events)
+        throw std::runtime_error(fmt::format("hybrid run: more than {} events by t = {:.9g} s (chattering?)",
+                                             o.max_events, s.t));
+      const auto action = system.on_event(s.t, y, s.roots_found);
+      if (sample) sample(s.t, y);
+      if (action == HybridSystem::EventAction::Stop) {
+        out.stopped_by_model = true;
+        break;
+      }
+      restart(s.t, y);
+      y = ida.y();
+      continue;
+    }
+    if (s.stop_time_reached || s.t >= o.end_time) break;
+    if (system.finished(s.t, y.data())) {
+      out.stopped_by_model = true;
+      break;
+    }
+  }
+  const auto st = ida.statistics();
+  out.statistics = {st.steps, st.error_test_failures + st.nonlinear_convergence_failures,
+                    st.residual_evaluations, st.jacobian_evaluations, st.nonlinear_iterations,
+                    events, ida.restarts()};
+  return out;
+}
+
+HybridOutcome run_odeint(HybridSystem& system, double t0, std::vector<double>& y,
+                         const HybridOptions& o, const HybridSampler& sample) {
+  OdeintOptions oo;
+  oo.relative_tolerance = o.relative_tolerance;
+  oo.absolute_tolerance = o.absolute_tolerance;
+  oo.initial_step = o.initial_step;
+  oo.max_step = o.max_step;
+  OdeintEventOptions ev;
+  ev.root_count = system.root_count();
+  ev.roots = [&](double t, const std::vector<double>& x, double* g) { system.event_roots(t, x.data(), g); };
+  ev.mask_tolerance = o.root_mask_tolerance;
+
+  HybridOutcome out;
+  OdeintStatistics stats;
+  long events = 0, restarts = 0;
+  double t = t0;
+  if (sample) sample(t0, y);
+  while (t < o.end_time) {
+    ev.masked = near_zero_roots(system, t, y, o.root_mask_tolerance);
+    bool stop_now = false;
+    auto sampler = [&](double ts, const std::vector<double>& ys) {
+      if (sample) sample(ts, ys);
+      if (system.finished(ts, ys.data())) stop_now = true;
+      return !stop_now;
+    };
+    const auto s = integrate_until_event(system, y, t, o.end_time, oo, ev, sampler, &stats);
+    if (s.stopped_by_sampler) {
+      t = s.t;
+      out.stopped_by_model = true;
+      break;
+    }
+    t = s.t;
+    if (s.last_step > 0.0) oo.initial_step = s.last_step;
+    if (!s.root_found) break;
+    ++events;
+    if (events > o.max_events)
+      throw std::runtime_error(fmt::format("hybrid run: more than {} events by t = {:.9g} s (chattering?)",
+                                           o.max_events, t));
+    const auto action = system.on_event(t, y, s.roots_found);
+    if (sample) sample(t, y);
+    if (action == HybridSystem::EventAction::Stop) {
+      out.stopped_by_model = true;
+      break;
+    }
+    ++restarts;
+  }
+  out.end_time = t;
+  out.statistics = {stats.steps, 0, stats.rhs_evaluations, 0, 0, events, restarts};
+  return out;
+}
+
+}  // namespace
+
+HybridOutcome run_hybrid(HybridSystem& system, double t0, std::vector<double>& y,
+                         const HybridOptions& options, const HybridSampler& sample) {
+  if (y.size() != system.size()) throw std::invalid_argument("run_hybrid: state size does not match the system");
+  if (!(options.end_time > t0)) throw std::invalid_argument("run_hybrid: end time must follow the start");
+  return options.integrator == HybridIntegrator::Ida ? run_ida(system, t0, y, options, sample)
+                                                     : run_odeint(system, t0, y, options, sample);
+}
+
+std::string to_string(HybridIntegrator i) { return i == HybridIntegrator::Ida ? "ida" : "odeint"; }
+
+}  // namespace ringcrush::hinge

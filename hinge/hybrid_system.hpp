@@ -1,0 +1,88 @@
+// A hybrid (piecewise-smooth, event-driven) model and the driver that integrates it with
+// either SUNDIALS IDA or Boost.Odeint — the same model object on both paths.
+//
+// The model is a DAE F(t, y, y′) = 0 (DaeSystem) and, for the explicit path, the ODE
+// y′ = f(t, y) of the same mode (OdeSystem; algebraic components carry f = 0 there and are
+// not read by the model). Mode switches — hinge yield and unloading, a rigid ring starting
+// to crush, contact opening, lock-up — are root functions g(t, y). At a located root the
+// driver hands the state to on_event(), which switches modes and may apply a velocity jump
+// (plastic impact); the integration then restarts: IDAReInit + IDACalcIC on IDA (stop time
+// set per segment), a fresh dense-output stepper on Odeint. Roots that sit at zero at the
+// restart (the one that just fired, typically) are masked until they have left zero.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dae_system.hpp"
+#include "ode_system.hpp"
+
+namespace ringcrush::hinge {
+
+class HybridSystem : public DaeSystem, public OdeSystem {
+ public:
+  std::size_t size() const override = 0;
+
+  // Event functions, shared by both paths; scale them to O(1) (see root masking).
+  std::size_t root_count() const override = 0;
+  virtual void event_roots(double t, const double* y, double* g) = 0;
+  void roots(double t, const double* y, const double* /*yp*/, double* g) final {
+    event_roots(t, y, g);
+  }
+
+  // Expected sign with which root i leaves zero right after a restart in the current mode
+  // (+1, −1; 0: no expectation). Used to mask roots that sit at zero after a mode switch
+  // while still catching a departure the wrong way (e.g. a ring that was found to crush
+  // starting to move backwards), see IdaSolver::reinit.
+  virtual int root_departure(std::size_t /*i*/) const { return 0; }
+
+  enum class EventAction { Continue, Stop };
+  // A root fired at t (fired[i] = +1 rising, −1 falling, 0 not). y is the state there; the
+  // model may change its mode and y (jumps). Stop ends the run.
+  virtual EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) = 0;
+
+  // Called after every accepted step; true ends the run (e.g. the chain has come to rest).
+  virtual bool finished(double /*t*/, const double* /*y*/) { return false; }
+};
+
+enum class HybridIntegrator { Ida, Odeint };
+
+struct HybridOptions {
+  HybridIntegrator integrator = HybridIntegrator::Ida;
+  double relative_tolerance = 1e-8;
+  double absolute_tolerance = 1e-10;
+  double end_time = 1.0;
+  double initial_step = 1e-7;    // Odeint; IDA chooses its own
+  double max_step = 0.0;         // 0: unbounded
+  long max_events = 100000;
+  long max_steps_per_segment = 500000;
+  double root_mask_tolerance = 1e-9;
+};
+
+struct HybridStatistics {
+  long steps = 0;
+  long rejected_steps = 0;        // IDA error-test failures (Odeint's rejections are internal)
+  long function_evaluations = 0;  // residuals (IDA) or right-hand sides (Odeint)
+  long jacobian_evaluations = 0;
+  long nonlinear_iterations = 0;
+  long events = 0;
+  long restarts = 0;
+};
+
+struct HybridOutcome {
+  double end_time = 0.0;
+  bool stopped_by_model = false;  // on_event returned Stop or finished() returned true
+  HybridStatistics statistics;
+};
+
+// Sees every accepted step, and each event twice (before and after the jump).
+using HybridSampler = std::function<void(double t, const std::vector<double>& y)>;
+
+// Integrates from (t0, y) until end_time or until the model stops; y is the final state.
+HybridOutcome run_hybrid(HybridSystem& system, double t0, std::vector<double>& y,
+                         const HybridOptions& options, const HybridSampler& sample);
+
+std::string to_string(HybridIntegrator);
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,52 @@
+#include "mass_lcp.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace ringcrush::hinge {
+
+MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd& p,
+                             const std::vector<char>& complementary, const std::vector<char>& zero) {
+  const Eigen::Index n = p.size();
+  if (mass.rows() != n || mass.cols() != n) throw std::invalid_argument("solve_mass_lcp: size mismatch");
+  MassLcpResult r;
+  r.held.assign(n, 0);
+  for (Eigen::Index i = 0; i < n; ++i) r.held[i] = zero[i] ? 1 : 0;
+  const double scale = std::max(p.cwiseAbs().maxCoeff(), 1e-300);
+  const double tol = 1e-12 * scale;
+  const int max_pivots = 50 * static_cast<int>(n) + 100;
+  for (;;) {
+    std::vector<Eigen::Index> free;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!r.held[i]) free.push_back(i);
+    const auto nf = static_cast<Eigen::Index>(free.size());
+    r.x = Eigen::VectorXd::Zero(n);
+    if (nf > 0) {
+      Eigen::MatrixXd a(nf, nf);
+      Eigen::VectorXd b(nf);
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        b(i) = p(free[i]);
+        for (Eigen::Index j = 0; j < nf; ++j) a(i, j) = mass(free[i], free[j]);
+      }
+      const Eigen::VectorXd xf = a.llt().solve(b);
+      for (Eigen::Index i = 0; i < nf; ++i) r.x(free[i]) = xf(i);
+    }
+    r.mu = mass * r.x - p;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!r.held[i]) r.mu(i) = 0.0;
+    // Least-index violation (Murty): a free complementary x_i < 0, or a held μ_i < 0. A
+    // degenerate x_i ≈ 0 counts as held (a ring on the verge of crushing stays rigid; the
+    // event machinery lets it go once its force really exceeds the collapse force).
+    Eigen::Index flip = -1;
+    for (Eigen::Index i = 0; i < n && flip < 0; ++i) {
+      if (!complementary[i] || zero[i]) continue;
+      const double xs = r.x(i) * mass(i, i);  // on the scale of p
+      if ((!r.held[i] && xs < tol) || (r.held[i] && r.mu(i) < -tol)) flip = i;
+    }
+    if (flip < 0) return r;
+    r.held[flip] = !r.held[flip];
+    if (++r.pivots > max_pivots) throw std::runtime_error("solve_mass_lcp: pivoting did not terminate");
+  }
+}
+
+}  // namespace ringcrush::hinge

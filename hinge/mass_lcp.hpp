@@ -1,0 +1,32 @@
+// The small linear complementarity problems of rigid–plastic mechanisms (THEORY §4.4
+// "Rigid rings … as a linear complementarity problem"): with a symmetric positive definite
+// mass matrix 𝓜,
+//
+//   𝓜 x = p + Σ μ_i e_i,   for i complementary: x_i ≥ 0, μ_i ≥ 0, x_i μ_i = 0;
+//                           for i held at zero:  x_i = 0, μ_i free;   otherwise μ_i = 0.
+//
+// At the velocity level (plastic impact: p = generalised momentum, x = velocities after
+// the impact, μ = impulses of rings that stay rigid) and at the acceleration level (x =
+// accelerations, μ = the margin of a rigid ring below its collapse force). 𝓜 positive
+// definite makes it a P-matrix LCP with a unique solution, found by Murty's least-index
+// principal pivoting (finite for P-matrices).
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace ringcrush::hinge {
+
+struct MassLcpResult {
+  Eigen::VectorXd x, mu;
+  std::vector<char> held;  // x_i held at zero (complementary or fixed)
+  int pivots = 0;
+};
+
+// complementary[i], zero[i]: flags per component (zero wins). Throws std::runtime_error if
+// the pivoting does not terminate (a non-positive-definite 𝓜).
+MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd& p,
+                             const std::vector<char>& complementary,
+                             const std::vector<char>& zero);
+
+}  // namespace ringcrush::hinge
