@@ -1,0 +1,253 @@
+#include "compare/hinge_run_2d.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <stdexcept>
+
+namespace ringcrush::compare {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+hinge::PolygonJoint joint_of(JointType j) {
+  switch (j) {
+    case JointType::Welded: return hinge::PolygonJoint::Welded;
+    case JointType::Free: return hinge::PolygonJoint::Free;
+    case JointType::Plates: return hinge::PolygonJoint::Plates;
+  }
+  return hinge::PolygonJoint::Free;
+}
+
+std::string mode_of(double crush_ratio, bool wrap) {
+  if (wrap) return "wrapped";
+  if (crush_ratio >= 0.5) return "flattened";
+  if (crush_ratio >= 0.1) return "crushed";
+  return "intact";
+}
+
+}  // namespace
+
+hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& s) {
+  const auto& rings = scene.rings;
+  const auto& mat = rings.material;
+  hinge::PolygonChainInput in;
+  in.rings = rings.count;
+  in.outer_diameter_m = rings.outer_diameter_m;
+  in.wall_thickness_m = rings.wall_thickness_m;
+  in.width_m = rings.width_m;
+  in.pitch_m = rings.pitch_m;
+  // Section state (THEORY §1.2): plane strain uses E/(1 − ν²) and the yield 2σ0/√3.
+  const bool strain = rings.section == SectionState::PlaneStrain;
+  const double nu = mat.poisson_ratio;
+  const double yield_factor = strain ? 2.0 / std::sqrt(3.0) : 1.0;
+  in.youngs_modulus_pa = strain ? mat.youngs_modulus_pa / (1 - nu * nu) : mat.youngs_modulus_pa;
+  in.yield_stress_pa = yield_factor * mat.initial_yield_stress();
+  in.hardening_modulus_pa = yield_factor * mat.hardening_modulus();
+  // The flat end of the hardening table caps the hinge moment.
+  in.yield_cap_ratio = mat.hardening.size() > 1
+                           ? mat.hardening.back().yield_stress_pa / mat.initial_yield_stress()
+                           : 0.0;
+  in.density_kg_m3 = mat.density_kg_m3;
+  in.nodes_per_ring = scene.hinge.nodes_per_ring;
+  in.half_symmetry = scene.analysis.symmetry == Symmetry::Half;
+  in.redwood_alpha = scene.hinge.redwood_alpha;
+  in.cowper_symonds_d_per_s = s.flow_d_per_s;
+  in.cowper_symonds_q = s.flow_q;
+  in.joint = joint_of(scene.joints.type);
+  in.plate_mass_kg = scene.joints.plate_mass_kg;
+  in.plate_thickness_m = scene.joints.plate_thickness_m;
+  in.tie_stiffness_scale = s.tie_stiffness_scale;
+  in.contact_stiffness_scale = s.contact_stiffness_scale;
+  in.contact_damping_s_per_m = s.contact_damping_s_per_m;
+  in.membrane_damping_ratio = s.membrane_damping_ratio;
+  in.hinge_damping_ratio = s.hinge_damping_ratio;
+  in.fixed_target = scene.far_end == FarEnd::Fixed;
+  if (scene.analysis.type == AnalysisType::Static) {
+    in.driven_impactor = true;
+    in.drive_speed_m_s = s.static_speed_m_s;
+    in.drive_ramp_s = 0.02 * scene.analysis.crush_m / s.static_speed_m_s;
+    in.mass_damping_per_s = s.static_mass_damping_per_s;
+    in.impactor_mass_kg = 0.0;
+  } else {
+    if (!scene.impactor) throw std::invalid_argument("Level 2: a dynamic scene needs an [impactor]");
+    in.impactor_mass_kg = scene.impactor->mass_kg;
+    in.impactor_velocity_m_s = scene.impactor->velocity_m_s;
+  }
+  return in;
+}
+
+std::vector<RingShape> ring_shapes(const hinge::PolygonShape& shape, double wall_thickness) {
+  std::vector<RingShape> out;
+  for (const auto& nodes : shape.nodes) {
+    RingShape r;
+    const auto n = nodes.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      r.points.emplace_back(nodes[k][0], nodes[k][1]);
+      r.material_angle.push_back(2.0 * pi * static_cast<double>(k) / static_cast<double>(n));
+    }
+    r.half = false;
+    r.surface_offset = wall_thickness;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<RingHingeMap> hinge_map(const hinge::PolygonShape& shape,
+                                    const std::vector<std::vector<double>>& first_yield,
+                                    double peak_fraction) {
+  std::vector<RingHingeMap> maps;
+  for (std::size_t r = 0; r < shape.plastic_rotation.size(); ++r) {
+    const auto& a = shape.plastic_rotation[r];
+    const std::size_t n = a.size();
+    RingHingeMap m;
+    const double top = *std::max_element(a.begin(), a.end());
+    // Peaks on the x ≥ 0 side (nodes 0…N/2; the other side mirrors it in a symmetric run).
+    for (std::size_t k = 0; k <= n / 2; ++k) {
+      const double prev = a[(k + n - 1) % n], next = a[(k + 1) % n];
+      if (top > 0 && a[k] >= peak_fraction * top && a[k] >= prev && a[k] >= next &&
+          (a[k] > prev || a[k] > next))
+        m.peaks.push_back({360.0 * static_cast<double>(k) / static_cast<double>(n), a[k],
+                           first_yield[r][k]});
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      if (first_yield[r][k] >= 0 && (m.first_yield_s < 0 || first_yield[r][k] < m.first_yield_s)) {
+        m.first_yield_s = first_yield[r][k];
+        const double deg = 360.0 * static_cast<double>(k) / static_cast<double>(n);
+        m.first_yield_angle_deg = deg > 180.0 ? 360.0 - deg : deg;
+      }
+    maps.push_back(std::move(m));
+  }
+  return maps;
+}
+
+Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const Level2Settings& s) {
+  Level2Run run;
+  const auto in = polygon_input(scene, s);
+  const bool is_static = scene.analysis.type == AnalysisType::Static;
+  hinge::PolygonRunOptions po;
+  po.integrator = options.integrator == HingeIntegrator::Ida ? hinge::PolygonIntegrator::Ida
+                                                              : hinge::PolygonIntegrator::Odeint;
+  run.relative_tolerance_used = options.relative_tolerance >= s.min_relative_tolerance
+                                    ? options.relative_tolerance
+                                    : s.default_relative_tolerance;
+  po.relative_tolerance = run.relative_tolerance_used;
+  po.absolute_scale = run.relative_tolerance_used;
+  po.output_interval_s = s.output_interval_s;
+  po.settle_time_s = s.settle_time_s;
+  if (is_static) {
+    po.end_time_s = in.drive_ramp_s + scene.analysis.crush_m / s.static_speed_m_s;
+    po.stop_at_arrest = false;
+    po.output_interval_s = po.end_time_s / 400.0;
+  } else {
+    po.end_time_s = scene.analysis.end_time_s;
+    po.stop_at_arrest = scene.analysis.stop_at_rest;
+  }
+  run.raw = hinge::run_polygon_chain(in, po);
+  const auto& raw = run.raw;
+  const auto& h = raw.history;
+  const double D = scene.rings.outer_diameter_m, t = scene.rings.wall_thickness_m;
+  const double R = 0.5 * (D - t);
+  const auto nsteps = h.time_s.size();
+
+  RunResult& r = run.result;
+  r.model = "hinge";
+  r.scene = scene.name;
+  r.analysis = scene.analysis.type;
+  if (is_static) {
+    r.deflection_m = h.impactor_displacement_m;
+    r.force_n = h.impactor_force_n;
+  }
+  r.time_s = h.time_s;
+  r.impactor_displacement_m = h.impactor_displacement_m;
+  r.impactor_velocity_m_s = h.impactor_velocity_m_s;
+  r.impactor_force_n = h.impactor_force_n;
+  r.ring_crush_m.assign(static_cast<std::size_t>(scene.rings.count), std::vector<double>(nsteps));
+  for (std::size_t i = 0; i < nsteps; ++i) {
+    const auto shapes = ring_shapes(h.shapes[i], t);
+    for (std::size_t ring = 0; ring < shapes.size(); ++ring) r.ring_crush_m[ring][i] = crush(shapes[ring], D);
+  }
+  r.kinetic_j = h.kinetic_j;
+  r.elastic_j = h.elastic_j;
+  r.plastic_j = h.plastic_j;
+  r.contact_j.resize(nsteps);
+  r.numerical_j = h.damping_j;
+  for (std::size_t i = 0; i < nsteps; ++i) r.contact_j[i] = h.contact_j[i] + h.contact_damping_j[i];
+  r.external_work_j = h.external_j;
+
+  const auto final_shapes = ring_shapes(h.shapes.back(), t);
+  for (std::size_t ring = 0; ring < final_shapes.size(); ++ring) {
+    const RingShape* lower = ring + 1 < final_shapes.size() ? &final_shapes[ring + 1] : nullptr;
+    if (scene.joints.type == JointType::Plates) lower = nullptr;  // a plate lies between
+    const auto w = measure_wrap(final_shapes[ring], lower, R, t);
+    const double c = crush_ratio(final_shapes[ring], D);
+    r.crush_ratio.push_back(c);
+    r.wrap_around.push_back(w.wrap_around);
+    r.wrapped_angle_deg.push_back(w.wrapped_angle_deg);
+    r.inverted_arc_m.push_back(w.inverted_arc_m);
+    r.mode.push_back(mode_of(c, w.wrap_around));
+  }
+
+  run.hinge_map = hinge_map(h.shapes.back(), raw.first_yield_time_s);
+  nlohmann::json maps = nlohmann::json::array();
+  for (std::size_t ring = 0; ring < run.hinge_map.size(); ++ring) {
+    const auto& m = run.hinge_map[ring];
+    nlohmann::json peaks = nlohmann::json::array();
+    for (const auto& p : m.peaks)
+      peaks.push_back({{"angle_deg", p.angle_deg},
+                       {"plastic_rotation_rad", p.plastic_rotation_rad},
+                       {"first_yield_s", p.first_yield_s}});
+    maps.push_back({{"ring", ring + 1},
+                    {"first_yield_s", m.first_yield_s},
+                    {"first_yield_angle_deg", m.first_yield_angle_deg},
+                    {"peaks", peaks}});
+    if (m.first_yield_s >= 0)
+      r.events.push_back({m.first_yield_s, "hinge_formed", static_cast<int>(ring),
+                          fmt::format("first yield at {:.1f} deg from the top", m.first_yield_angle_deg)});
+  }
+  std::sort(r.events.begin(), r.events.end(),
+            [](const RunEvent& a, const RunEvent& b) { return a.time_s < b.time_s; });
+
+  r.statistics.steps = raw.steps;
+  r.statistics.rejected_steps = raw.rejected_steps;
+  r.statistics.newton_iterations = raw.nonlinear_iterations;
+  r.statistics.wall_time_s = raw.wall_time_s;
+  r.extra = {
+      {"level", "2"},
+      {"integrator", options.integrator == HingeIntegrator::Ida ? "ida" : "odeint"},
+      {"relative_tolerance_used", run.relative_tolerance_used},
+      {"nodes_per_ring", in.nodes_per_ring},
+      {"symmetry", in.half_symmetry ? "half" : "full"},
+      {"joints", to_string(scene.joints.type)},
+      {"ties", scene.joints.type == JointType::Welded ? "penalty springs" : "none"},
+      {"arrest_time_s", raw.arrest_time_s >= 0 ? nlohmann::json(raw.arrest_time_s) : nlohmann::json()},
+      {"end_time_s", raw.end_time_s},
+      {"model_energy_balance_error", raw.energy_balance_error},
+      {"numerical_damping_J", h.damping_j.back()},
+      {"contact_damping_J", h.contact_damping_j.back()},
+      {"residual_evaluations", raw.rhs_evaluations},
+      {"jacobian_setups", raw.jacobian_setups},
+      {"inverted_arc_m", r.inverted_arc_m},
+      {"hinge_map", maps},
+      {"level2_settings",
+       {{"flow_D_per_s", s.flow_d_per_s},
+        {"flow_q", s.flow_q},
+        {"contact_stiffness_scale", s.contact_stiffness_scale},
+        {"contact_damping_s_per_m", s.contact_damping_s_per_m},
+        {"tie_stiffness_scale", s.tie_stiffness_scale},
+        {"membrane_damping_ratio", s.membrane_damping_ratio},
+        {"hinge_damping_ratio", s.hinge_damping_ratio}}}};
+  if (run.relative_tolerance_used != options.relative_tolerance)
+    r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",
+                                  options.relative_tolerance, s.min_relative_tolerance,
+                                  run.relative_tolerance_used);
+  return run;
+}
+
+RunResult run_hinge_level2(const Scene& scene, const HingeRunOptions& options) {
+  return run_level2(scene, options).result;
+}
+
+}  // namespace ringcrush::compare

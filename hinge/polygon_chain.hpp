@@ -1,0 +1,206 @@
+// Level 2 of the hinge model (THEORY §4.3–4.4): every ring a closed polygon of N rigid bars
+// joined by elastic–viscoplastic rotational springs, with membrane springs in the bars,
+// lumped node masses, penalty contact (ring–plate, ring–ring, inner wall–inner wall with the
+// wall thickness as offset, plate–plate), welded ties as stiff springs, and rigid plates
+// (impactor, interleaved plates, target). One model, two forms:
+//   * DAE  F(t, y, y′) = μ ∘ y′ − φ(t, y) = 0 for IDA (DaeSystem), with a sparse Jacobian
+//     by coloured finite differences (polygon_ida.hpp);
+//   * ODE  y′ = φ(t, y) / μ for Boost.Odeint (OdeSystem).
+// The mass "μ" is diagonal, so both forms are the same equations.
+//
+// Geometry: the polygon is the mean line. Ring r has centre (0, c_r); its full-ring node k
+// sits at material angle a_k = 2πk/N measured clockwise from the top (node 0 = A, node N/2 =
+// B), at (R sin a_k, c_r + R cos a_k). With the x = 0 symmetry plane (the thesis FE model),
+// only nodes 0…N/2 are unknowns; the others are their mirror images, and the model's energy,
+// masses and forces are those of the half (x ≥ 0) structure: nodes on the axis carry half a
+// node mass, half a hinge and half a plate contact. y is upward; the impactor comes from
+// above and moves toward −y.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "dae_system.hpp"
+#include "ode_system.hpp"
+
+namespace ringcrush::hinge {
+
+enum class PolygonJoint { Welded, Free, Plates };
+
+struct PolygonChainInput {
+  // Rings (all alike). Effective E and σ0 carry the section state: plane strain passes
+  // E/(1 − ν²) and 2σ0/√3 (THEORY §1.2).
+  int rings = 1;
+  double outer_diameter_m = 0.0508;
+  double wall_thickness_m = 0.0016;
+  double width_m = 0.0125;
+  double pitch_m = 0.0;               // ring-centre spacing; 0 means D (touching rings)
+  double youngs_modulus_pa = 202e9;
+  double yield_stress_pa = 273e6;
+  double hardening_modulus_pa = 0.0;  // E′ of the hinge hardening M_y = M0 + H_θ ā
+  double yield_cap_ratio = 0.0;       // M_y ≤ cap·M0 (the flat end of the hardening table); 0: none
+  double density_kg_m3 = 7850.0;
+  int nodes_per_ring = 48;            // N of the full ring; even, and a multiple of 4 for the half model
+  bool half_symmetry = true;
+
+  // Hinge law (THEORY §4.3). Hinge length l_h = α t when α > 0, else the bar length ℓ0;
+  // H_θ = E′ I / l_h. Viscoplastic Cowper–Symonds flow
+  //   λ̇ = (2 l_h / t) D ⟨|M|/M_y − 1⟩^q.
+  double redwood_alpha = 0.0;
+  double cowper_symonds_d_per_s = 40.4;  // mild steel, Jones (1989)
+  double cowper_symonds_q = 5.0;
+
+  // Joints between rings and their plates.
+  PolygonJoint joint = PolygonJoint::Free;
+  double plate_mass_kg = 0.0;        // interleaved plates (full mass)
+  double plate_thickness_m = 0.0;
+  double tie_stiffness_scale = 1.0;  // welded: k_tie = scale · E t L / ℓ0 (penalty tie)
+
+  // Contact: k_n = scale · E t L / ℓ0 per node; Hunt–Crossley damping f = k p (1 + χ ṗ),
+  // clipped at zero (no adhesion), χ in s/m.
+  double contact_stiffness_scale = 1.0;
+  double contact_damping_s_per_m = 0.05;
+
+  // Impactor (full mass; the half model carries half of it) and far end.
+  double impactor_mass_kg = 0.257;
+  double impactor_velocity_m_s = 0.0;  // toward the chain (downward)
+  bool fixed_target = true;
+  // Quasi-static use: the impactor plate is driven at a prescribed speed instead of flying
+  // (its speed ramps up over `drive_ramp_s`), and a mass-proportional damping force
+  // −c m v (c in 1/s) removes the ringing. Both off for impact runs.
+  bool driven_impactor = false;
+  double drive_speed_m_s = 0.0;
+  double drive_ramp_s = 0.0;
+  double mass_damping_per_s = 0.0;
+
+  // Kelvin–Voigt damping of the polygon's node-scale vibrations (a numerical convenience,
+  // named so that it is never hidden): bar force c_b ℓ̇ and hinge moment c_θ θ̇, with
+  // c_b = ζ_m·2√(k_m m/2) and c_θ = ζ_b·2√(k_θ m ℓ0²/2), i.e. ζ is the damping ratio of the
+  // shortest bar-stretch and node-wiggle modes; slow ring modes get ζ·ω/ω_max. Without it
+  // IDA resolves contact-excited membrane ringing at ~1e-7 s steps.
+  double membrane_damping_ratio = 0.0;
+  double hinge_damping_ratio = 0.0;
+};
+
+// Snapshot of the chain for output and measures (full rings, mirrored when half).
+struct PolygonShape {
+  // [ring][node] mean-line positions of the full ring, node k at material angle 2πk/N.
+  std::vector<std::vector<std::array<double, 2>>> nodes;
+  std::vector<std::vector<double>> turning;         // [ring][node] τ_k (rad), 2π/N when undeformed
+  std::vector<std::vector<double>> plastic_rotation;  // [ring][node] accumulated ā_k (rad)
+  std::vector<double> body_faces;  // y of the impactor's contact face, plates' centres, target face
+};
+
+struct PolygonEnergies {  // of the modelled structure (the half when half_symmetry)
+  double kinetic = 0, elastic = 0, contact = 0;     // contact: penalty potential
+  // Integrated from the state accumulators: plastic hinge work, contact damping, the
+  // Kelvin–Voigt and mass damping (numerical), work of the driven plate.
+  double plastic = 0, contact_damping = 0, damping = 0, external = 0;
+};
+
+class PolygonChain final : public DaeSystem, public OdeSystem {
+ public:
+  explicit PolygonChain(const PolygonChainInput& input);
+
+  // Sizes and layout: per ring, per independent node j: [x, y, vx, vy, θp, ā]; then the
+  // bodies [y, v] (impactor, interleaved plates); then four accumulators
+  // [plastic work, contact damping, Kelvin–Voigt + mass damping, external work of the driven
+  // plate].
+  std::size_t size() const override { return size_; }
+  int nodes_per_ring() const { return n_full_; }
+  int independent_nodes() const { return n_ind_; }
+  std::size_t node_offset(int ring, int node) const {
+    return static_cast<std::size_t>((ring * n_ind_ + node) * 6);
+  }
+  std::size_t body_offset(int body) const { return body_base_ + 2 * static_cast<std::size_t>(body); }
+  std::size_t accumulator_offset() const { return acc_base_; }
+  int body_count() const { return n_bodies_; }
+  // Component scales for absolute tolerances (m, m/s, rad, J).
+  std::vector<double> component_scales() const;
+
+  std::vector<double> initial_state() const;
+  // y′ at (t, y): the explicit form of the same equations.
+  void rhs(double t, const double* y, double* dydt) override;
+  void residual(double t, const double* y, const double* yp, double* r) override;
+
+  // Sparse ∂F/∂y + cj ∂F/∂y′ by coloured forward differences on the current contact graph.
+  // The accumulator rows keep only their diagonal (nothing depends on them).
+  struct Triplet {
+    int row, col;
+    double value;
+  };
+  void sparse_jacobian(double t, double cj, const double* y, const double* yp, const double* r,
+                       std::vector<Triplet>& out);
+
+  // Generalised internal + contact + tie forces φ (the velocity-row part of rhs times mass),
+  // for tests of the elastic stiffness. Same length as the state.
+  void generalised_forces(double t, const double* y, double* phi);
+
+  PolygonShape shape(const double* y) const;
+  PolygonEnergies energies(double t, const double* y);
+  // Contact force on the impactor (full structure, N, positive pushing it back up) and on the
+  // target.
+  double impactor_force(double t, const double* y);
+  double target_force(double t, const double* y);
+  double impactor_position(double t, const double* y) const;  // displacement from start, + down
+  double impactor_velocity(double t, const double* y) const;  // + toward the chain
+  // Factor from the modelled structure to the full one (2 for the half model).
+  double structure_factor() const { return half_ ? 2.0 : 1.0; }
+
+  // Derived constants (for tests and reports).
+  double mean_radius() const { return R_; }
+  double bar_length() const { return l0_; }
+  double plastic_moment() const { return M0_; }
+  double hinge_stiffness() const { return k_theta_; }
+  double node_mass() const { return m_node_; }
+  long contact_pairs_last() const { return static_cast<long>(pairs_.size()); }
+
+ private:
+  struct Body {
+    double half_thickness;  // contact faces at y ± h
+    double mass;            // modelled mass (halved for the half model)
+    bool fixed;
+    double fixed_y;
+  };
+  struct ContactPair {  // node–segment, for the Jacobian's graph
+    int slave, master_a, master_b;  // global independent node ids
+  };
+  struct BodyContact {
+    int node;  // global independent node id
+    int body;  // −1: target
+  };
+
+  void evaluate(double t, const double* y, double* phi, bool record);
+  double prescribed_speed(double t) const;
+  double body_y(int body, const double* y) const;
+  double body_v(int body, double t, const double* y) const;
+  double node_weight(int j) const { return (half_ && (j == 0 || j == n_ind_ - 1)) ? 0.5 : 1.0; }
+  void expand_ring(int ring, const double* y);
+  double contact_force(double penetration, double rate, double& dissipation) const;
+
+  PolygonChainInput in_;
+  bool half_;
+  int n_full_, n_ind_, n_rings_, n_bodies_;
+  std::size_t body_base_, acc_base_, size_;
+  double c_bar_ = 0, c_hinge_ = 0;
+  double R_, l0_, t_, k_theta_, k_m_, M0_, H_, cap_, C_vp_, q_, m_node_, k_n_, chi_, k_tie_;
+  std::vector<double> ring_centre_;
+  std::vector<Body> bodies_;  // 0 = impactor, then plates
+  double target_y_ = 0.0;
+  std::vector<double> mu_;  // the diagonal "mass" of F = μ y′ − φ
+
+  // Scratch (no allocation in the residual).
+  std::vector<double> px_, py_, vx_, vy_, theta_p_, fx_, fy_, moment_;
+  std::vector<double> bar_l_, bar_nx_, bar_ny_, bar_ex_, bar_ey_, bar_beta_;
+  double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
+  double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
+  std::vector<ContactPair> pairs_;
+  std::vector<BodyContact> body_contacts_;
+  std::vector<std::array<int, 2>> tie_pairs_;
+  std::vector<std::array<int, 2>> body_body_;  // consecutive bodies incl. target (−1)
+  std::vector<double> phi_, pert_y_, pert_r_, base_r_;
+  std::vector<std::array<double, 4>> ring_box_, seg_box_;  // contact broad phase
+};
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,172 @@
+#include "polygon_ida.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"  // inside Eigen's SparseLU
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#pragma GCC diagnostic pop
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fmt/format.h>
+
+namespace ringcrush::hinge {
+
+namespace {
+
+std::string flag_name(int flag) {
+  char* name = IDAGetReturnFlagName(flag);
+  std::string result = name ? name : "unknown";
+  std::free(name);
+  return result;
+}
+
+// Every SUNDIALS return code of this file passes here (STYLE practice 9).
+void check(int flag, const char* function, const std::string& message = {}) {
+  if (flag >= 0) return;
+  throw IdaError(function, flag,
+                 fmt::format("{} failed with {} ({}){}{}", function, flag_name(flag), flag,
+                             message.empty() ? "" : ": ", message));
+}
+
+}  // namespace
+
+struct PolygonIdaSolver::Impl {
+  PolygonChain* system = nullptr;
+  SUNContext context = nullptr;
+  void* ida = nullptr;
+  N_Vector y = nullptr, yp = nullptr, atol = nullptr;
+  SUNLinearSolver ls = nullptr;
+  std::vector<PolygonChain::Triplet> triplets;
+  std::vector<Eigen::Triplet<double>> eigen_triplets;
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::VectorXd rhs, sol;
+  long setups = 0;
+  std::string last_message;
+
+  ~Impl() {
+    if (ida) IDAFree(&ida);
+    if (ls) SUNLinSolFree(ls);
+    if (atol) N_VDestroy(atol);
+    if (yp) N_VDestroy(yp);
+    if (y) N_VDestroy(y);
+    if (context) SUNContext_Free(&context);
+  }
+
+  static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user) {
+    try {
+      static_cast<Impl*>(user)->system->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
+                                                 N_VGetArrayPointer(r));
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+
+  // Preconditioner setup: P = ∂F/∂y + cj ∂F/∂y′ (coloured differences), sparse LU.
+  static int setup(realtype t, N_Vector y, N_Vector yp, N_Vector r, realtype cj, void* user) {
+    auto& m = *static_cast<Impl*>(user);
+    try {
+      m.system->sparse_jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
+                                N_VGetArrayPointer(r), m.triplets);
+      m.eigen_triplets.clear();
+      m.eigen_triplets.reserve(m.triplets.size());
+      for (const auto& e : m.triplets) m.eigen_triplets.emplace_back(e.row, e.col, e.value);
+      const auto n = static_cast<Eigen::Index>(m.system->size());
+      m.matrix.resize(n, n);
+      m.matrix.setFromTriplets(m.eigen_triplets.begin(), m.eigen_triplets.end());
+      m.lu.analyzePattern(m.matrix);
+      m.lu.factorize(m.matrix);
+      ++m.setups;
+      return m.lu.info() == Eigen::Success ? 0 : 1;  // 1: recoverable, IDA retries
+    } catch (...) {
+      return -1;
+    }
+  }
+
+  static int solve(realtype, N_Vector, N_Vector, N_Vector, N_Vector rvec, N_Vector zvec, realtype,
+                   realtype, void* user) {
+    auto& m = *static_cast<Impl*>(user);
+    const auto n = static_cast<Eigen::Index>(m.system->size());
+    m.rhs = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(rvec), n);
+    m.sol = m.lu.solve(m.rhs);
+    if (m.lu.info() != Eigen::Success) return 1;
+    std::copy_n(m.sol.data(), n, N_VGetArrayPointer(zvec));
+    return 0;
+  }
+
+  static void error_handler(int, const char* module, const char* function, char* msg, void* data) {
+    static_cast<Impl*>(data)->last_message = fmt::format("{}::{}: {}", module, function, msg);
+  }
+};
+
+PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::vector<double>& y0,
+                                   const PolygonIdaOptions& options)
+    : impl_(std::make_unique<Impl>()), t_(t0), y_(y0) {
+  auto& m = *impl_;
+  m.system = &system;
+  const auto n = static_cast<sunindextype>(system.size());
+  if (y0.size() != system.size()) throw std::invalid_argument("PolygonIdaSolver: state size");
+  check(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
+  m.y = N_VNew_Serial(n, m.context);
+  m.yp = N_VNew_Serial(n, m.context);
+  m.atol = N_VNew_Serial(n, m.context);
+  if (!m.y || !m.yp || !m.atol) throw IdaError("N_VNew_Serial", -1, "N_VNew_Serial returned no vector");
+  std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(m.y));
+  system.rhs(t0, y0.data(), N_VGetArrayPointer(m.yp));  // consistent y′0 (μ is diagonal)
+  const auto scales = system.component_scales();
+  for (std::size_t i = 0; i < scales.size(); ++i)
+    N_VGetArrayPointer(m.atol)[i] = options.absolute_scale * scales[i];
+
+  m.ida = IDACreate(m.context);
+  if (!m.ida) throw IdaError("IDACreate", -1, "IDACreate returned no memory");
+  check(IDASetErrHandlerFn(m.ida, &Impl::error_handler, &m), "IDASetErrHandlerFn");
+  check(IDAInit(m.ida, &Impl::residual, t0, m.y, m.yp), "IDAInit");
+  check(IDASetUserData(m.ida, &m), "IDASetUserData");
+  check(IDASVtolerances(m.ida, options.relative_tolerance, m.atol), "IDASVtolerances");
+  check(IDASetMaxNumSteps(m.ida, options.max_steps), "IDASetMaxNumSteps");
+  if (options.max_step > 0) check(IDASetMaxStep(m.ida, options.max_step), "IDASetMaxStep");
+  if (options.initial_step > 0) check(IDASetInitStep(m.ida, options.initial_step), "IDASetInitStep");
+  check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
+  check(IDASetDeltaCjLSetup(m.ida, options.cj_setup_ratio), "IDASetDeltaCjLSetup");
+  m.ls = SUNLinSol_SPGMR(m.y, SUN_PREC_LEFT, 10, m.context);
+  if (!m.ls) throw IdaError("SUNLinSol_SPGMR", -1, "SUNLinSol_SPGMR returned no solver");
+  check(IDASetLinearSolver(m.ida, m.ls, nullptr), "IDASetLinearSolver");
+  check(IDASetPreconditioner(m.ida, &Impl::setup, &Impl::solve), "IDASetPreconditioner");
+}
+
+PolygonIdaSolver::~PolygonIdaSolver() = default;
+
+double PolygonIdaSolver::advance(double tout) {
+  auto& m = *impl_;
+  realtype tret = t_;
+  const int flag = IDASolve(m.ida, tout, &tret, m.y, m.yp, IDA_NORMAL);
+  if (flag < 0) {
+    const std::string where = fmt::format("IDASolve at t = {:.9g} s toward {:.9g} s", tret, tout);
+    check(flag, where.c_str(), m.last_message);
+  }
+  t_ = tret;
+  std::copy_n(N_VGetArrayPointer(m.y), y_.size(), y_.begin());
+  return t_;
+}
+
+PolygonIdaStatistics PolygonIdaSolver::statistics() const {
+  auto& m = *impl_;
+  PolygonIdaStatistics s;
+  check(IDAGetNumSteps(m.ida, &s.steps), "IDAGetNumSteps");
+  check(IDAGetNumResEvals(m.ida, &s.residual_evaluations), "IDAGetNumResEvals");
+  check(IDAGetNumNonlinSolvIters(m.ida, &s.nonlinear_iterations), "IDAGetNumNonlinSolvIters");
+  check(IDAGetNumErrTestFails(m.ida, &s.error_test_failures), "IDAGetNumErrTestFails");
+  check(IDAGetNumNonlinSolvConvFails(m.ida, &s.nonlinear_convergence_failures),
+        "IDAGetNumNonlinSolvConvFails");
+  check(IDAGetNumLinIters(m.ida, &s.linear_iterations), "IDAGetNumLinIters");
+  s.preconditioner_setups = m.setups;
+  return s;
+}
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,50 @@
+// Runs the Level 2 polygon chain (polygon_chain.hpp) in time on IDA (polygon_ida.hpp) or on
+// Boost.Odeint (dopri5, dense output), sampling the histories, the ring shapes and the
+// first yield of every hinge. Plain structs in and out: no scene, no TOML (DESIGN.md).
+#pragma once
+
+#include <vector>
+
+#include "polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+enum class PolygonIntegrator { Ida, Odeint };
+
+struct PolygonRunOptions {
+  PolygonIntegrator integrator = PolygonIntegrator::Ida;
+  double relative_tolerance = 1e-6;
+  double absolute_scale = 1e-6;   // absolute tolerance per component = scale × component scale
+  double end_time_s = 0.05;       // latest end
+  bool stop_at_arrest = true;     // end `settle_time_s` after the impactor first stops
+  double settle_time_s = 1e-3;
+  double output_interval_s = 2e-5;
+  double yield_threshold_rad = 1e-4;  // ā above this marks a hinge as having yielded
+  double max_step_s = 0.0;        // 0: unbounded
+  int ida_max_order = 5;          // IDA BDF order limit (PolygonIdaOptions::max_order)
+};
+
+struct PolygonHistory {  // full structure (both halves), SI
+  std::vector<double> time_s, impactor_displacement_m, impactor_velocity_m_s, impactor_force_n,
+      target_force_n;
+  std::vector<double> kinetic_j, elastic_j, contact_j, plastic_j, contact_damping_j, damping_j,
+      external_j;
+  std::vector<PolygonShape> shapes;  // one per sample
+};
+
+struct PolygonRunOutput {
+  PolygonHistory history;
+  std::vector<std::vector<double>> first_yield_time_s;  // [ring][full node], −1 if never
+  double initial_energy_j = 0.0;       // kinetic energy at t = 0 (full structure)
+  double energy_balance_error = 0.0;   // max over samples of |balance| / max(KE0, external work)
+  double arrest_time_s = -1.0;         // first time the impactor speed toward the chain ≤ 0
+  double end_time_s = 0.0;
+  long steps = 0, rejected_steps = 0, nonlinear_iterations = 0, rhs_evaluations = 0,
+       jacobian_setups = 0;
+  double wall_time_s = 0.0;
+  std::vector<double> final_state;
+};
+
+PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const PolygonRunOptions& options);
+
+}  // namespace ringcrush::hinge
