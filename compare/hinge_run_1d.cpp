@@ -61,7 +61,8 @@ RunResult from_chain(const Scene& scene, const HingeRunOptions& o, const hinge::
   r.contact_j = h.impact_loss_j;  // plastic impacts (first contact, lock-up)
   r.numerical_j.assign(h.time_s.size(), 0.0);
   r.external_work_j.assign(h.time_s.size(), 0.0);
-  fill_final_state(r, c.final_crush_m, law);
+  // Final crush: the permanent (plastic) crush, i.e. after elastic springback.
+  fill_final_state(r, c.final_permanent_crush_m, law);
   for (const auto& e : c.events) r.events.push_back({e.time_s, e.kind, e.ring, e.detail});
   const auto& st = c.outcome.statistics;
   r.statistics.steps = st.steps;
@@ -82,6 +83,8 @@ RunResult from_chain(const Scene& scene, const HingeRunOptions& o, const hinge::
              {"function_evaluations", st.function_evaluations},
              {"jacobian_evaluations", st.jacobian_evaluations},
              {"plastic_energy_per_ring_J", ring_plastic},
+             {"crush_ratio_basis", "permanent crush (elastic springback removed)"},
+             {"final_total_crush_m", c.final_crush_m},
              {"impact_loss_J", h.impact_loss_j.back()},
              {"ring_collapse_load_N", law.collapse_load()},
              {"ring_mean_force_to_lock_N", law.mean_force_to_lock()},
@@ -167,6 +170,7 @@ hinge::HybridOptions hybrid_options(const Scene& scene, const HingeRunOptions& o
   h.relative_tolerance = o.relative_tolerance;
   h.absolute_tolerance = o.absolute_tolerance;
   h.end_time = scene.analysis.end_time_s > 0 ? scene.analysis.end_time_s : 0.05;
+  h.stop_when_finished = scene.analysis.stop_at_rest;
   return h;
 }
 

@@ -82,7 +82,10 @@ struct ChainResult {
   double initial_kinetic_energy_j = 0.0;  // ½MV²
   double arrest_time_s = -1.0;            // impactor at rest (fixed end) or at the common
                                           // velocity (free end); −1: not reached
-  std::vector<double> final_crush_m;
+  std::vector<double> final_crush_m;            // δ_i at the end (Level 0: with the
+                                                // elastic part of a still-vibrating chain)
+  std::vector<double> final_permanent_crush_m;  // Level 0: plastic crush δp_i (after
+                                                // springback); Level 1: δ_i
   // max over the history of |KE + elastic + plastic + impact loss − ½MV²| / ½MV²
   double energy_balance_error() const;
 };

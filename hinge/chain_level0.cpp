@@ -46,6 +46,7 @@ class Level0Chain final : public HybridSystem {
     branch_.assign(n_, Branch::Elastic);
     locked_.assign(n_, 0);
     yielded_.assign(n_, 0);
+    switched_.assign(n_, 0);
     double total = 0.0;
     for (double m : mass_) total += m;
     v_common_ = free_end_ ? in.impactor_mass_kg * vref_ / total : 0.0;
@@ -147,13 +148,14 @@ class Level0Chain final : public HybridSystem {
     g[4 * n_] = (y[nm_] - v_common_) / vref_;
   }
 
-  int root_departure(std::size_t r) const override {
-    if (r == static_cast<std::size_t>(4 * n_)) return arrest_time_ < 0.0 ? 1 : -1;
+  int root_departure(std::size_t r, int fired) const override {
+    if (r == static_cast<std::size_t>(4 * n_)) return fired != 0 ? fired : (arrest_time_ < 0.0 ? 1 : 0);
     const int i = static_cast<int>(r / 4);
     switch (r % 4) {
-      case 0: return 1;  // yield margin grows when elastic; crush rate grows when plastic
-      case 1: return branch_[i] == Branch::Open ? -1 : 1;
-      case 2: return locked_[i] ? 1 : -1;
+      // yield margin (elastic) or crush rate (plastic): both grow after a switch
+      case 0: return switched_[i] ? 1 : (fired != 0 ? fired : 1);
+      case 1: return fired != 0 ? fired : (branch_[i] == Branch::Open ? -1 : 1);
+      case 2: return fired != 0 ? fired : (locked_[i] ? 1 : -1);
       default: return 0;
     }
   }
@@ -161,7 +163,9 @@ class Level0Chain final : public HybridSystem {
   EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
     // Only the physically meaningful crossing direction switches a mode; the other one
     // (e.g. the yield margin growing again right after unloading) is a restart, no more.
+    std::fill(switched_.begin(), switched_.end(), 0);
     for (int i = 0; i < n_; ++i) {
+      const Branch before = branch_[i];
       const double rate = delta_rate(y.data(), i);
       if (fired[4 * i] < 0) {
         if (branch_[i] == Branch::Elastic && rate > 0.0) {
@@ -181,6 +185,7 @@ class Level0Chain final : public HybridSystem {
         branch_[i] = Branch::Elastic;
         log(t, "contact_closed", i, "");
       }
+      switched_[i] = branch_[i] != before;
       if (fired[4 * i + 2]) {
         const bool lock = fired[4 * i + 2] > 0;
         if (lock != static_cast<bool>(locked_[i])) {
@@ -275,7 +280,7 @@ class Level0Chain final : public HybridSystem {
   std::vector<double> mass_;
   double k_ = 0, klock_ = 0, p0_ = 0, dl_ = 0, vref_ = 1, v_common_ = 0, settle_time_ = 0;
   std::vector<Branch> branch_;
-  std::vector<char> locked_, yielded_;
+  std::vector<char> locked_, yielded_, switched_;
   double impact_loss_ = 0.0;
   double arrest_time_ = -1.0, last_plastic_end_ = -1.0;
   std::vector<double> jac_;
@@ -301,7 +306,10 @@ ChainResult simulate_level0(const ChainInput& input, const HybridOptions& option
                               [&](double t, const std::vector<double>& s) { model.record(t, s, h); });
   result.events = std::move(model.events);
   result.arrest_time_s = model.arrest_time();
-  for (int i = 0; i < input.rings; ++i) result.final_crush_m.push_back(h.ring_crush_m[i].back());
+  for (int i = 0; i < input.rings; ++i) {
+    result.final_crush_m.push_back(h.ring_crush_m[i].back());
+    result.final_permanent_crush_m.push_back(y[2 * (input.rings + (input.far_end == ChainFarEnd::Free ? 1 : 0)) + i]);
+  }
   return result;
 }
 

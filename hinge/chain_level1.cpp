@@ -47,6 +47,7 @@ class Level1Chain final : public HybridSystem {
     phi_lock_ = law_.lock_angle();
     vref_ = in.impactor_velocity_m_s;
     mode_.assign(n_, RingMode::Rigid);
+    mode_before_ = mode_;
     double total = in.impactor_mass_kg + n_ * law_.mass_kg;
     for (int b = 1; b < n_; ++b) total += body_mass_[b];
     v_common_ = free_end_ ? in.impactor_mass_kg * vref_ / total : 0.0;
@@ -179,17 +180,21 @@ class Level1Chain final : public HybridSystem {
     return v;
   }
 
-  // After a restart every ring root is expected to grow away from zero: a crushing ring's
-  // rate, a rigid ring's margin below collapse, its (compressive) force, the distance to lock.
-  int root_departure(std::size_t r) const override {
-    if (r == static_cast<std::size_t>(3 * n_)) return arrest_time_ < 0.0 ? 1 : -1;
-    return 1;
+  // After a mode switch every ring root is expected to grow away from zero: a crushing
+  // ring's rate, a rigid ring's margin below collapse, its (compressive) force, the distance
+  // to lock. Roots whose meaning did not change keep the direction they crossed in.
+  int root_departure(std::size_t r, int fired) const override {
+    if (r == static_cast<std::size_t>(3 * n_)) return fired != 0 ? fired : (arrest_time_ < 0.0 ? 1 : 0);
+    const auto i = r / 3;
+    if (mode_[i] != mode_before_[i]) return 1;
+    return fired != 0 ? fired : 1;
   }
 
   EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
     double* q = y.data();
     double* qd = y.data() + nq_;
     bool impact = false;
+    mode_before_ = mode_;
     for (int i = 0; i < n_; ++i) {
       if (fired[3 * i + 1] < 0)
         throw std::runtime_error(fmt::format(
@@ -338,7 +343,7 @@ class Level1Chain final : public HybridSystem {
   bool free_end_ = false;
   std::vector<double> body_mass_;
   double d_ = 0, phi_lock_ = 0, vref_ = 1, v_common_ = 0;
-  std::vector<RingMode> mode_;
+  std::vector<RingMode> mode_, mode_before_;
   double impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m_;
   Eigen::VectorXd b_, a_, w_;
@@ -362,6 +367,7 @@ ChainResult simulate_level1(const ChainInput& input, const HybridOptions& option
   result.events = std::move(model.events);
   result.arrest_time_s = model.arrest_time();
   for (int i = 0; i < input.rings; ++i) result.final_crush_m.push_back(h.ring_crush_m[i].back());
+  result.final_permanent_crush_m = result.final_crush_m;
   return result;
 }
 

@@ -12,14 +12,14 @@ namespace {
 
 // Roots at (or within the mask tolerance of) zero after a restart are masked.
 std::vector<int> near_zero_roots(HybridSystem& system, double t, const std::vector<double>& y,
-                                 double tolerance) {
+                                 double tolerance, const std::vector<int>& fired) {
   std::vector<double> g(system.root_count());
   if (g.empty()) return {};
   system.event_roots(t, y.data(), g.data());
   std::vector<int> masked(g.size(), 0);
   for (std::size_t i = 0; i < g.size(); ++i) {
     if (std::abs(g[i]) > tolerance) continue;
-    const int expected = system.root_departure(i);
+    const int expected = system.root_departure(i, fired.empty() ? 0 : fired[i]);
     masked[i] = expected != 0 ? expected : root_mask_inactive;
   }
   return masked;
@@ -47,14 +47,14 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   IdaSolver ida(system, t0, y, yp, io);
   // IDACalcIC needs a first output time for its scale: one hundredth of the run.
   const double ic_horizon = 1e-2 * (o.end_time - t0);
-  auto restart = [&](double t, const std::vector<double>& state) {
+  auto restart = [&](double t, const std::vector<double>& state, const std::vector<int>& fired) {
     std::vector<double> deriv(n);
     system.rhs(t, state.data(), deriv.data());
-    ida.reinit(t, state, deriv, near_zero_roots(system, t, state, o.root_mask_tolerance));
+    ida.reinit(t, state, deriv, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
     if (algebraic) ida.calc_initial_conditions(t + ic_horizon);
     ida.set_stop_time(o.end_time);
   };
-  restart(t0, y);
+  restart(t0, y, {});
   if (sample) sample(t0, ida.y());
 
   HybridOutcome out;
@@ -75,12 +75,12 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
         out.stopped_by_model = true;
         break;
       }
-      restart(s.t, y);
+      restart(s.t, y, s.roots_found);
       y = ida.y();
       continue;
     }
     if (s.stop_time_reached || s.t >= o.end_time) break;
-    if (system.finished(s.t, y.data())) {
+    if (o.stop_when_finished && system.finished(s.t, y.data())) {
       out.stopped_by_model = true;
       break;
     }
@@ -109,12 +109,13 @@ HybridOutcome run_odeint(HybridSystem& system, double t0, std::vector<double>& y
   long events = 0, restarts = 0;
   double t = t0;
   if (sample) sample(t0, y);
+  std::vector<int> fired;
   while (t < o.end_time) {
-    ev.masked = near_zero_roots(system, t, y, o.root_mask_tolerance);
+    ev.masked = near_zero_roots(system, t, y, o.root_mask_tolerance, fired);
     bool stop_now = false;
     auto sampler = [&](double ts, const std::vector<double>& ys) {
       if (sample) sample(ts, ys);
-      if (system.finished(ts, ys.data())) stop_now = true;
+      if (o.stop_when_finished && system.finished(ts, ys.data())) stop_now = true;
       return !stop_now;
     };
     const auto s = integrate_until_event(system, y, t, o.end_time, oo, ev, sampler, &stats);
@@ -126,6 +127,7 @@ HybridOutcome run_odeint(HybridSystem& system, double t0, std::vector<double>& y
     t = s.t;
     if (s.last_step > 0.0) oo.initial_step = s.last_step;
     if (!s.root_found) break;
+    fired = s.roots_found;
     ++events;
     if (events > o.max_events)
       throw std::runtime_error(fmt::format("hybrid run: more than {} events by t = {:.9g} s (chattering?)",

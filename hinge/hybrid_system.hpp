@@ -31,11 +31,13 @@ class HybridSystem : public DaeSystem, public OdeSystem {
     event_roots(t, y, g);
   }
 
-  // Expected sign with which root i leaves zero right after a restart in the current mode
-  // (+1, −1; 0: no expectation). Used to mask roots that sit at zero after a mode switch
-  // while still catching a departure the wrong way (e.g. a ring that was found to crush
-  // starting to move backwards), see IdaSolver::reinit.
-  virtual int root_departure(std::size_t /*i*/) const { return 0; }
+  // Expected sign with which root i leaves zero right after a restart (+1, −1; 0: no
+  // expectation). `fired` is the direction in which root i has just crossed (0 if it did
+  // not): by default a root keeps going the way it crossed; a model whose mode switch gave
+  // the root a new meaning says where the new function heads (e.g. a ring that has started
+  // to crush: its crush rate grows). Roots sitting at zero after a restart are masked with
+  // this sign, so that leaving zero the *other* way is still an event (IdaSolver::reinit).
+  virtual int root_departure(std::size_t /*i*/, int fired) const { return fired; }
 
   enum class EventAction { Continue, Stop };
   // A root fired at t (fired[i] = +1 rising, −1 falling, 0 not). y is the state there; the
@@ -58,6 +60,7 @@ struct HybridOptions {
   long max_events = 100000;
   long max_steps_per_segment = 500000;
   double root_mask_tolerance = 1e-9;
+  bool stop_when_finished = true;  // false: ignore finished() and run to end_time
 };
 
 struct HybridStatistics {

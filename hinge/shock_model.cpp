@@ -87,7 +87,7 @@ class ShockOde final : public HybridSystem {
     g[0] = (y[1] - y[2]) / in_.impactor_velocity_m_s;  // arrest (falls through 0)
     g[1] = (length_ - y[0]) / in_.pitch_m;             // front at the far end (falls)
   }
-  int root_departure(std::size_t) const override { return 1; }
+  int root_departure(std::size_t, int) const override { return 1; }
   EventAction on_event(double t, std::vector<double>&, const std::vector<int>& fired) override {
     if (fired[0] < 0) {
       arrest = t;

@@ -103,7 +103,7 @@ class Ball : public HybridSystem {
     j.set(1, 1, cj);
   }
   void event_roots(double, const double* y, double* g) override { g[0] = y[0]; }
-  int root_departure(std::size_t) const override { return 1; }
+  int root_departure(std::size_t, int) const override { return 1; }  // h rises after a bounce
   EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
     if (fired[0] >= 0) return EventAction::Continue;
     bounce_times.push_back(t);
