@@ -24,10 +24,14 @@ double RingLaw::hardening_k() const {
   return hardening_modulus_pa / (3.0 * yield_stress_pa * redwood_alpha);
 }
 
+// Same value as ring_laws' redwood_load (tested), with one asin instead of three: this is
+// evaluated in every right-hand side and root function of Level 0.
 double RingLaw::backbone(double dp) const {
-  const double x = std::max(dp, 0.0);
-  return redwood_load(collapse_load(), hardening_modulus_pa, yield_stress_pa, redwood_alpha, x,
-                      mean_diameter());
+  const double d = mean_diameter();
+  const double x = std::max(dp, 0.0) / d;
+  if (!(x < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
+  const double phi = std::asin(x);
+  return 8.0 * plastic_moment_nm / d * (1.0 + hardening_k() * phi) / std::sqrt(1.0 - x * x);
 }
 
 // With f(φ) = (1 + kφ)/cos φ, P_b = P0 f(φ) and dφ/dδ = 1/(d cos φ):

@@ -92,10 +92,13 @@ struct ChainResult {
 
 // Level 0 (THEORY §4.4 "Level 0 equations"): rate-independent elastic–plastic ring springs,
 // event-driven (yield, unloading, contact opening/closing, lock-up).
-ChainResult simulate_level0(const ChainInput& input, const HybridOptions& options);
+// record_history = false keeps only the first and the last sample (sweeps, benchmarks).
+ChainResult simulate_level0(const ChainInput& input, const HybridOptions& options,
+                            bool record_history = true);
 
 // Level 1 (THEORY §4.4 "Level 1"): rigid–plastic DeRuntz–Hodge/Redwood rings with J(φ),
 // plates (or joints treated as flat contacts) between rings, rigid rings by complementarity.
-ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options);
+ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options,
+                            bool record_history = true);
 
 }  // namespace ringcrush::hinge

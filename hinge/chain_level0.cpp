@@ -288,7 +288,7 @@ class Level0Chain final : public HybridSystem {
 
 }  // namespace
 
-ChainResult simulate_level0(const ChainInput& input, const HybridOptions& options) {
+ChainResult simulate_level0(const ChainInput& input, const HybridOptions& options, bool record_history) {
   input.validate();
   if (!(input.ring.elastic_stiffness_n_m > 0))
     throw std::invalid_argument("Level 0 needs a positive elastic ring stiffness");
@@ -302,8 +302,20 @@ ChainResult simulate_level0(const ChainInput& input, const HybridOptions& option
   std::vector<double> y = model.initial_state();
   result.initial_kinetic_energy_j =
       0.5 * input.impactor_mass_kg * input.impactor_velocity_m_s * input.impactor_velocity_m_s;
-  result.outcome = run_hybrid(model, 0.0, y, options,
-                              [&](double t, const std::vector<double>& s) { model.record(t, s, h); });
+  // Without a history only the first and the last state are recorded (sweeps, benchmarks).
+  std::vector<double> last;
+  double t_last = 0.0;
+  bool first = true;
+  result.outcome = run_hybrid(model, 0.0, y, options, [&](double t, const std::vector<double>& s) {
+    if (record_history || first) {
+      model.record(t, s, h);
+      first = false;
+    } else {
+      last = s;
+      t_last = t;
+    }
+  });
+  if (!record_history && !last.empty()) model.record(t_last, last, h);
   result.events = std::move(model.events);
   result.arrest_time_s = model.arrest_time();
   for (int i = 0; i < input.rings; ++i) {

@@ -48,6 +48,7 @@ class Level1Chain final : public HybridSystem {
     vref_ = in.impactor_velocity_m_s;
     mode_.assign(n_, RingMode::Rigid);
     mode_before_ = mode_;
+    for (int i = 0; i < n_; ++i) strength_.push_back(1.0 + tie_break * i);
     double total = in.impactor_mass_kg + n_ * law_.mass_kg;
     for (int b = 1; b < n_; ++b) total += body_mass_[b];
     v_common_ = free_end_ ? in.impactor_mass_kg * vref_ / total : 0.0;
@@ -56,6 +57,13 @@ class Level1Chain final : public HybridSystem {
     a_.resize(nq_);
     w_.resize(nq_);
   }
+
+  // Identical rigid rings in series that carry the same force reach their collapse force at
+  // the same instant: which of them crushes is then decided by round-off alone. The tie is
+  // broken deterministically, and physically (the ring nearer the impactor is loaded first
+  // through any real compliance), by weakening ring i by a relative 1e-9·i.
+  static constexpr double tie_break = 1e-9;
+  double collapse_force(int i, double phi) const { return strength_[i] * law_.generalized_force(phi); }
 
   std::size_t size() const override { return 2 * nq_ + n_; }
   std::size_t root_count() const override { return 3 * n_ + 1; }
@@ -77,28 +85,35 @@ class Level1Chain final : public HybridSystem {
       c[j] = d_ * std::cos(q[j]);
       sq[j] = d_ * std::sin(q[j]) * qd[j] * qd[j];
     }
-    // Bodies: a_b[j] = c_j for j ≥ b; ȧ_b·q̇ = −Σ_{j≥b} d sin φ_j φ̇_j².
+    // Rank-one updates m · v vᵀ on the trailing block [lo, nq)², where v is non-zero.
+    auto add_outer = [&](double m, const Eigen::VectorXd& v, int lo) {
+      double* md = m_.data();
+      for (int k = lo; k < nq_; ++k) {
+        const double mk = m * v(k);
+        double* col = md + static_cast<std::ptrdiff_t>(k) * nq_;
+        for (int j = lo; j < nq_; ++j) col[j] += mk * v(j);
+      }
+    };
+    // Bodies: a_b[j] = c_j for j ≥ b (and 1 for u_N); ȧ_b·q̇ = −Σ_{j≥b} d sin φ_j φ̇_j².
     double tail = 0.0;  // Σ_{j≥b} sq_j, built from the far end
     for (int b = n_; b >= 0; --b) {
       if (b < n_) tail += sq[b];
       const double mb = body_mass_[b];
       if (mb == 0.0) continue;
-      a_.setZero();
       for (int j = b; j < n_; ++j) a_(j) = c[j];
       if (free_end_) a_(n_) = 1.0;
-      m_.noalias() += mb * a_ * a_.transpose();
-      b_ += mb * tail * a_;  // −m a (ȧ·q̇) = +m a Σ sq
+      add_outer(mb, a_, b);
+      for (int j = b; j < nq_; ++j) b_(j) += mb * tail * a_(j);  // −m a (ȧ·q̇) = +m a Σ sq
     }
     // Ring centres: w_i = (a_i + a_{i+1})/2.
     tail = 0.0;
     for (int i = n_ - 1; i >= 0; --i) {
-      w_.setZero();
       for (int j = i + 1; j < n_; ++j) w_(j) = c[j];
       w_(i) = 0.5 * c[i];
       if (free_end_) w_(n_) = 1.0;
       const double wdot = -(tail + 0.5 * sq[i]);
-      m_.noalias() += law_.mass_kg * w_ * w_.transpose();
-      b_ -= law_.mass_kg * wdot * w_;
+      add_outer(law_.mass_kg, w_, i);
+      for (int j = i; j < nq_; ++j) b_(j) -= law_.mass_kg * wdot * w_(j);
       tail += sq[i];
     }
     for (int i = 0; i < n_; ++i) {
@@ -107,32 +122,45 @@ class Level1Chain final : public HybridSystem {
     }
   }
 
-  // Accelerations and ring forces in the current modes (after assemble()).
+  // Accelerations and ring forces in the current modes (after assemble()): rigid and
+  // locked rings have φ̈ = 0, the rest solve 𝓜_FF q̈_F = (b − λ_crushing)_F; the rigid rings'
+  // reactions follow from their rows. Preallocated buffers: this runs in every rhs.
   void accelerations(const double* q, Eigen::VectorXd& qdd, Eigen::VectorXd& lambda) {
-    Eigen::VectorXd r = b_;
-    lambda = Eigen::VectorXd::Zero(n_);
+    r_ = b_;
+    lambda.setZero(n_);
+    free_.clear();
     for (int i = 0; i < n_; ++i)
       if (mode_[i] == RingMode::Crushing) {
-        lambda(i) = law_.generalized_force(q[i]);
-        r(i) -= lambda(i);
+        lambda(i) = collapse_force(i, q[i]);
+        r_(i) -= lambda(i);
+        free_.push_back(i);
       }
-    std::vector<char> comp(nq_, 0), zero(nq_, 0);
-    for (int i = 0; i < n_; ++i) zero[i] = mode_[i] != RingMode::Crushing;
-    const auto lcp = solve_mass_lcp(m_, r, comp, zero);  // no complementarity: a linear solve
-    qdd = lcp.x;
+    for (int j = n_; j < nq_; ++j) free_.push_back(j);
+    const auto nf = static_cast<Eigen::Index>(free_.size());
+    qdd.setZero(nq_);
+    if (nf > 0) {
+      mf_.resize(nf, nf);
+      rf_.resize(nf);
+      for (Eigen::Index i = 0; i < nf; ++i) {
+        rf_(i) = r_(free_[i]);
+        for (Eigen::Index j = 0; j < nf; ++j) mf_(i, j) = m_(free_[i], free_[j]);
+      }
+      llt_.compute(mf_);
+      rf_ = llt_.solve(rf_);
+      for (Eigen::Index i = 0; i < nf; ++i) qdd(free_[i]) = rf_(i);
+    }
     for (int i = 0; i < n_; ++i)
-      if (mode_[i] != RingMode::Crushing) lambda(i) = -lcp.mu(i);
+      if (mode_[i] != RingMode::Crushing) lambda(i) = r_(i) - m_.row(i).dot(qdd);
   }
 
   void rhs(double, const double* y, double* f) override {
     const double* q = y;
     const double* qd = y + nq_;
     assemble(q, qd);
-    Eigen::VectorXd qdd, lambda;
-    accelerations(q, qdd, lambda);
+    accelerations(q, qdd_, lambda_);
     for (int j = 0; j < nq_; ++j) {
       f[j] = qd[j];
-      f[nq_ + j] = qdd(j);
+      f[nq_ + j] = qdd_(j);
     }
     for (int i = 0; i < n_; ++i) f[2 * nq_ + i] = 0.0;
   }
@@ -149,7 +177,7 @@ class Level1Chain final : public HybridSystem {
       r[nq_ + j] = mq(j) - b_(j) + (j < n_ ? lambda[j] : 0.0);
     }
     for (int i = 0; i < n_; ++i)
-      r[2 * nq_ + i] = mode_[i] == RingMode::Crushing ? lambda[i] - law_.generalized_force(q[i])
+      r[2 * nq_ + i] = mode_[i] == RingMode::Crushing ? lambda[i] - collapse_force(i, q[i])
                                                       : yp[nq_ + i] / vref_ * d_;
   }
 
@@ -161,10 +189,10 @@ class Level1Chain final : public HybridSystem {
     const double* q = y;
     const double* qd = y + nq_;
     assemble(q, qd);
-    Eigen::VectorXd qdd, lambda;
-    accelerations(q, qdd, lambda);
+    accelerations(q, qdd_, lambda_);
+    const Eigen::VectorXd& lambda = lambda_;
     for (int i = 0; i < n_; ++i) {
-      const double gi = law_.generalized_force(q[i]);
+      const double gi = collapse_force(i, q[i]);
       g[3 * i] = mode_[i] == RingMode::Crushing ? qd[i] * d_ / vref_
                  : mode_[i] == RingMode::Rigid  ? (gi - lambda(i)) / gi
                                                 : 1.0;
@@ -259,7 +287,7 @@ class Level1Chain final : public HybridSystem {
         zero[i] = 1;
         continue;
       }
-      r(i) -= law_.generalized_force(q[i]);
+      r(i) -= collapse_force(i, q[i]);
       if (mode_[i] == RingMode::Rigid || qd[i] <= 0.0) comp[i] = 1;
     }
     const auto lcp = solve_mass_lcp(m_, r, comp, zero);
@@ -314,7 +342,7 @@ class Level1Chain final : public HybridSystem {
       v0 += d_ * c * qd[j];
       a0 += d_ * (c * qdd(j) - s * qd[j] * qd[j]);
       h.ring_crush_m[j].push_back(d_ * s);
-      const double w = law_.plastic_energy_at_angle(q[j]);
+      const double w = strength_[j] * law_.plastic_energy_at_angle(q[j]);
       h.ring_plastic_j[j].push_back(w);
       pl += w;
     }
@@ -344,15 +372,18 @@ class Level1Chain final : public HybridSystem {
   std::vector<double> body_mass_;
   double d_ = 0, phi_lock_ = 0, vref_ = 1, v_common_ = 0;
   std::vector<RingMode> mode_, mode_before_;
+  std::vector<double> strength_;
   double impact_loss_ = 0.0, arrest_time_ = -1.0;
-  Eigen::MatrixXd m_;
-  Eigen::VectorXd b_, a_, w_;
+  Eigen::MatrixXd m_, mf_;
+  Eigen::VectorXd b_, a_, w_, r_, rf_, qdd_, lambda_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  std::vector<Eigen::Index> free_;
   std::vector<double> c_, sq_;
 };
 
 }  // namespace
 
-ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options) {
+ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options, bool record_history) {
   input.validate();
   Level1Chain model(input);
   ChainResult result;
@@ -362,8 +393,20 @@ ChainResult simulate_level1(const ChainInput& input, const HybridOptions& option
   std::vector<double> y = model.initial_state();
   result.initial_kinetic_energy_j =
       0.5 * input.impactor_mass_kg * input.impactor_velocity_m_s * input.impactor_velocity_m_s;
-  result.outcome = run_hybrid(model, 0.0, y, options,
-                              [&](double t, const std::vector<double>& s) { model.record(t, s, h); });
+  // Without a history only the first and the last state are recorded (sweeps, benchmarks).
+  std::vector<double> last;
+  double t_last = 0.0;
+  bool first = true;
+  result.outcome = run_hybrid(model, 0.0, y, options, [&](double t, const std::vector<double>& s) {
+    if (record_history || first) {
+      model.record(t, s, h);
+      first = false;
+    } else {
+      last = s;
+      t_last = t;
+    }
+  });
+  if (!record_history && !last.empty()) model.record(t_last, last, h);
   result.events = std::move(model.events);
   result.arrest_time_s = model.arrest_time();
   for (int i = 0; i < input.rings; ++i) result.final_crush_m.push_back(h.ring_crush_m[i].back());
