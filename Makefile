@@ -7,7 +7,7 @@ JOBS  ?= $(shell nproc)
 .PHONY: configure build run test bench clean
 
 configure:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DRINGCRUSH_WITH_MPI=ON
 
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)

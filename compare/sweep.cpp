@@ -214,6 +214,9 @@ void flatten(const nlohmann::json& v, const std::string& name, std::vector<std::
   if (v.is_object()) {
     for (auto it = v.begin(); it != v.end(); ++it) flatten(*it, name.empty() ? it.key() : name + "." + it.key(), out);
   } else if (v.is_array()) {
+    // Per-ring arrays become name_1 … name_N; lists of records (events) stay in summary.json.
+    for (const auto& e : v)
+      if (e.is_structured()) return;
     for (std::size_t i = 0; i < v.size(); ++i) flatten(v[i], fmt::format("{}_{}", name, i + 1), out);
   } else if (v.is_boolean()) {
     out.emplace_back(name, v.get<bool>() ? "1" : "0");
@@ -237,6 +240,14 @@ int merge_sweep(const SweepGrid& grid, const fs::path& out_dir, const fs::path& 
   std::map<std::string, std::size_t> column_index;
   std::vector<std::pair<const SweepCase*, std::map<std::string, std::string>>> rows;
   int absent = 0;
+  // Staging directories of cases that finished since (a killed run's leftovers) go.
+  for (const auto& e : fs::directory_iterator(out_dir)) {
+    const std::string n = e.path().filename().string();
+    const auto mark = n.find(".partial-");
+    if (n.front() == '.' && mark != std::string::npos &&
+        fs::exists(out_dir / n.substr(1, mark - 1) / "summary.json"))
+      fs::remove_all(e.path());
+  }
   for (const auto& c : grid.cases) {
     const fs::path summary = out_dir / c.name / "summary.json";
     if (!fs::exists(summary)) {
