@@ -30,28 +30,32 @@ double RingLaw::backbone(double dp) const {
   const double d = mean_diameter();
   const double x = std::max(dp, 0.0) / d;
   if (!(x < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
-  const double phi = std::asin(x);
-  return 8.0 * plastic_moment_nm / d * (1.0 + hardening_k() * phi) / std::sqrt(1.0 - x * x);
+  const double k = hardening_k();
+  const double phi = k != 0.0 ? std::asin(x) : 0.0;
+  return 8.0 * plastic_moment_nm / d * (1.0 + k * phi) / std::sqrt(1.0 - x * x);
 }
 
 // With f(φ) = (1 + kφ)/cos φ, P_b = P0 f(φ) and dφ/dδ = 1/(d cos φ):
-//   f′ = k/c + (1 + kφ) s/c²,  f″ = 2k s/c² + (1 + kφ)(1 + s²)/c³.
+//   f′ = k/c + (1 + kφ) s/c²,  f″ = 2k s/c² + (1 + kφ)(1 + s²)/c³,
+// where s = sin φ = δ/d and c = cos φ = √(1 − s²) need no trigonometric calls.
 double RingLaw::backbone_slope(double dp) const {
   const double d = mean_diameter(), k = hardening_k();
-  const double phi = mechanism_angle(std::max(dp, 0.0), d);
-  const double c = std::cos(phi), s = std::sin(phi);
+  const double s = std::max(dp, 0.0) / d;
+  if (!(s < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
+  const double c = std::sqrt(1.0 - s * s), phi = k != 0.0 ? std::asin(s) : 0.0;
   const double f1 = k / c + (1.0 + k * phi) * s / (c * c);
-  return collapse_load() * f1 / (d * c);
+  return 8.0 * plastic_moment_nm / d * f1 / (d * c);
 }
 
 double RingLaw::backbone_curvature(double dp) const {
   const double d = mean_diameter(), k = hardening_k();
-  const double phi = mechanism_angle(std::max(dp, 0.0), d);
-  const double c = std::cos(phi), s = std::sin(phi);
+  const double s = std::max(dp, 0.0) / d;
+  if (!(s < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
+  const double c = std::sqrt(1.0 - s * s), phi = k != 0.0 ? std::asin(s) : 0.0;
   const double f1 = k / c + (1.0 + k * phi) * s / (c * c);
   const double f2 = 2.0 * k * s / (c * c) + (1.0 + k * phi) * (1.0 + s * s) / (c * c * c);
   // d/dδ [f′/(d c)] = (1/(d c)) · (f″/(d c) + f′ s/(d c²))
-  return collapse_load() / (d * c) * (f2 / (d * c) + f1 * s / (d * c * c));
+  return 8.0 * plastic_moment_nm / d / (d * c) * (f2 / (d * c) + f1 * s / (d * c * c));
 }
 
 double RingLaw::plastic_energy(double dp) const {
