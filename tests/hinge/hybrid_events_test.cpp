@@ -174,4 +174,4 @@ TEST_P(BouncingBall, BounceTimesMatchClosedForm) {
 
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, BouncingBall,
                          ::testing::Values(HybridIntegrator::Ida, HybridIntegrator::Odeint),
-                         [](const auto& info) { return to_string(info.param); });
+                         [](const auto& param_info) { return to_string(param_info.param); });

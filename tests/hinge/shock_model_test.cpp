@@ -55,7 +55,9 @@ TEST_P(ShockIntegrated, AgreesWithTheClosedFormTo1e6) {
   EXPECT_NEAR(run.impactor_force_n.front() / exact.initial_load_n, 1.0, 1e-9);
   for (std::size_t k = 0; k < run.time_s.size(); k += 5) {
     const double v = exact.velocity_at(run.front_position_m[k]);
-    if (v > 1.0) EXPECT_NEAR(run.velocity_m_s[k] / v, 1.0, 1e-6);
+    if (v > 1.0) {
+      EXPECT_NEAR(run.velocity_m_s[k] / v, 1.0, 1e-6);
+    }
   }
   EXPECT_LT(run.energy_balance_error(), 1e-8);
   // Step distribution: 3 rings locked, the 4th at 0.66, the rest untouched.
@@ -80,7 +82,7 @@ TEST_P(ShockIntegrated, FreeEndKeepsEnergyAndMomentum) {
 
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, ShockIntegrated,
                          ::testing::Values(HybridIntegrator::Ida, HybridIntegrator::Odeint),
-                         [](const auto& info) { return to_string(info.param); });
+                         [](const auto& param_info) { return to_string(param_info.param); });
 
 TEST(ShockModel, DiscreteSequentialReproducesTheory22) {
   const double mr = 0.024267;

@@ -48,8 +48,8 @@ TEST_P(WorkPrecision, ErrorFallsWithTheTolerance) {
 INSTANTIATE_TEST_SUITE_P(Levels, WorkPrecision,
                          ::testing::Combine(::testing::Values(0, 1),
                                             ::testing::Values(HybridIntegrator::Ida, HybridIntegrator::Odeint)),
-                         [](const auto& info) {
-                           return "L" + std::to_string(std::get<0>(info.param)) + "_" + to_string(std::get<1>(info.param));
+                         [](const auto& param_info) {
+                           return "L" + std::to_string(std::get<0>(param_info.param)) + "_" + to_string(std::get<1>(param_info.param));
                          });
 
 }  // namespace
