@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -338,6 +339,18 @@ Scene parse_scene(const std::string& text, const std::string& file) {
     f.initial_increment = r.number("initial_increment", f.initial_increment);
     require(f.initial_increment > 0 && f.initial_increment <= 1, r, "initial_increment",
             "must lie in (0, 1]");
+    f.min_increment = r.number("min_increment", std::min(f.min_increment, f.initial_increment));
+    require(f.min_increment > 0 && f.min_increment <= f.initial_increment, r, "min_increment",
+            "must lie in (0, initial_increment]");
+    f.max_increment = r.number("max_increment", std::max(f.max_increment, f.initial_increment));
+    require(f.max_increment >= f.initial_increment && f.max_increment <= 1, r, "max_increment",
+            "must lie in [initial_increment, 1]");
+    f.max_iterations = static_cast<int>(r.integer("max_iterations", f.max_iterations));
+    require(f.max_iterations >= 2 && f.max_iterations <= 200, r, "max_iterations",
+            "must lie in [2, 200]");
+    f.contact_smoothing = r.number("contact_smoothing", f.contact_smoothing);
+    require(f.contact_smoothing >= 0 && f.contact_smoothing < 0.5, r, "contact_smoothing",
+            "must lie in [0, 0.5)");
     f.contact_penalty_scale = r.number("contact_penalty_scale", f.contact_penalty_scale);
     require(f.contact_penalty_scale > 0, r, "contact_penalty_scale", "must be positive");
     f.friction_coefficient = r.number("friction_coefficient", f.friction_coefficient);

@@ -91,6 +91,10 @@ struct FeSettings {
   double haftol_n = 1e4;             // half-step residual tolerance (thesis §3.5)
   double ptol_n = 6.0;               // force residual tolerance (thesis PTOL)
   double initial_increment = 0.01;   // static: fraction of the total travel
+  double min_increment = 1e-5;       // static: a smaller increment ends the run (thesis *STATIC)
+  double max_increment = 0.01;       // static: largest increment (thesis *STATIC)
+  int max_iterations = 10;           // static: Newton iterations per increment (thesis CYCLE)
+  double contact_smoothing = 0.25;   // Hermite junction smoothing of slide lines (thesis SMOOTH)
   double contact_penalty_scale = 1.0;
   double friction_coefficient = 0.0;
   double explicit_safety = 0.8;

@@ -1,0 +1,196 @@
+// ringcrush fe SCENE -o DIR — the CPS8 finite-element model (thesis §3.4, §3.6; DESIGN.md "fe").
+//
+//   ringcrush fe data/scenes/thesis_static.toml -o results/fe_static
+//
+// A static scene crushes one ring between rigid plates (the driven top plate travels
+// analysis.crush_m) and writes summary.json, history.csv (deflection_m, force_N for the
+// whole ring, energies), load_deflection.svg (with DeRuntz–Hodge and Redwood) and, if
+// outputs.fields, frames/*.vtu + series.pvd. A correct run prints the options, the initial
+// contact check, one updating progress line, then the peak load and the run statistics.
+// A failed solve prints its diagnosis, exits 1 and leaves no results directory.
+//
+// ringcrush bench-fe-static [SCENE] — the performance and mesh-convergence benchmark of the
+// static crush (README "Measured results"): the scene on its own mesh, on a 4× finer mesh
+// (2× around, 2× through), and a three-mesh convergence study of the load at δ/d = 0.3, 0.6.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "compare/cli/commands.hpp"
+#include "compare/fe_static.hpp"
+#include "compare/results_dir.hpp"
+
+namespace ringcrush::compare::cli {
+namespace {
+
+struct FeOptions {
+  std::string scene;
+  std::string output;
+  bool quiet = false;
+};
+
+const char* integration_name(fe::Integration i) {
+  switch (i) {
+    case fe::Integration::Full: return "full 3x3";
+    case fe::Integration::Reduced: return "reduced 2x2";
+    case fe::Integration::Selective: return "selective (3x3, volumetric at 2x2)";
+  }
+  return "?";
+}
+
+fe::StaticCallbacks terminal_callbacks(bool quiet) {
+  fe::StaticCallbacks cb;
+  const bool tty = isatty(fileno(stderr)) != 0;
+  cb.log = [quiet](const std::string& m) {
+    if (!quiet) fmt::print(stderr, "{}\n", m);
+  };
+  if (!quiet && tty)
+    cb.progress = [](const fe::StaticProgress& p) {
+      fmt::print(stderr, "\r  {:5.1f} %  delta {:7.3f} mm  P {:9.2f} N  inc {:5d}  d{:.2e}  it {:2d} ",
+                 100 * p.fraction, p.deflection_m * 1e3, p.force_n, p.step, p.increment, p.iterations);
+      if (p.fraction >= 1.0) fmt::print(stderr, "\n");
+    };
+  return cb;
+}
+
+void echo(const Scene& s, const fe::FeInput& in) {
+  fmt::print("scene {}: {}\n", s.name, s.title);
+  fmt::print("  ring D = {:.2f} mm, t = {:.2f} mm, L = {:.2f} mm; E = {:.0f} GPa, nu = {:.2f}, {} hardening points\n",
+             2e3 * in.ring.outer_radius_m, 1e3 * (in.ring.outer_radius_m - in.ring.inner_radius_m),
+             1e3 * in.ring.width_m, in.material.youngs_modulus_pa / 1e9, in.material.poisson_ratio,
+             in.material.hardening.size());
+  fmt::print("  mesh: {} ring, {} CPS8 around (per half) x {} through, grading {:g}; integration {}\n",
+             in.mesh.half_ring ? "half" : "full", in.mesh.elements_around, in.mesh.elements_through,
+             in.mesh.grading, integration_name(in.integration));
+  fmt::print("  contact: penalty scale {:g}, smoothing {:g}, inner-wall self contact {}\n",
+             in.contact.penalty_scale, in.contact.smoothing, in.contact.self_contact ? "on" : "off");
+  fmt::print("  static: crush {:.2f} mm, increments initial {:g} / min {:g} / max {:g}, PTOL {:g} N, {} iterations\n",
+             in.solver.crush_m * 1e3, in.solver.initial_increment, in.solver.min_increment,
+             in.solver.max_increment, in.solver.force_tolerance_n, in.solver.max_iterations);
+}
+
+void run_fe(const FeOptions& o) {
+  const Scene s = load_scene(o.scene);
+  if (s.analysis.type != AnalysisType::Static)
+    throw std::invalid_argument("ringcrush fe: dynamic FE analyses (HHT-alpha, explicit) are not built yet; "
+                                "this FE core runs static scenes");
+  const fe::FeInput in = fe_static_input(s);
+  if (!o.quiet) echo(s, in);
+  if (o.output.empty()) throw std::invalid_argument("ringcrush fe: -o DIR is required");
+  ResultsDir out(o.output);
+  const fe::StaticResult r = fe::run_static(in, terminal_callbacks(o.quiet));
+  const RunResult run = fe_static_run_result(s, r);
+  write_fe_static_outputs(s, r, run, out);
+  out.commit();
+  const auto& st = r.statistics;
+  double pmax = 0;
+  for (double p : run.force_n) pmax = std::max(pmax, p);
+  fmt::print("done: delta = {:.3f} mm, P = {:.2f} N (max {:.2f} N); {} increments, {} cut-backs, {} Newton "
+             "iterations ({:.2f}/increment), {:.3f} s ({:.1f} us/iteration)\n",
+             run.deflection_m.back() * 1e3, run.force_n.back(), pmax, st.increments, st.cutbacks,
+             st.newton_iterations, st.increments ? double(st.newton_iterations) / double(st.increments) : 0.0,
+             st.wall_time_s, st.newton_iterations ? 1e6 * st.wall_time_s / double(st.newton_iterations) : 0.0);
+  fmt::print("wrote {}\n", out.target().string());
+}
+
+void add_fe_command(CLI::App& app) {
+  auto o = std::make_shared<FeOptions>();
+  auto* cmd = app.add_subcommand("fe", "CPS8 finite-element model of a scene (static crush; thesis §3.4, §3.6)");
+  cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)")->required();
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress or echo on the terminal");
+  cmd->callback([o] { run_fe(*o); });
+}
+
+// ---- benchmark -------------------------------------------------------------------------
+
+struct BenchOptions {
+  std::string scene = "data/scenes/thesis_static.toml";
+  int repeats = 3;
+  bool convergence = true;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double load_at(const fe::StaticResult& r, double delta) {
+  const auto& h = r.history;
+  for (std::size_t i = 1; i < h.size(); ++i)
+    if (h[i].deflection_m >= delta) {
+      const double t = (delta - h[i - 1].deflection_m) / (h[i].deflection_m - h[i - 1].deflection_m);
+      return h[i - 1].force_n + t * (h[i].force_n - h[i - 1].force_n);
+    }
+  return h.back().force_n;
+}
+
+void run_bench(const BenchOptions& o) {
+  const Scene s = load_scene(o.scene);
+  fe::FeInput base = fe_static_input(s);
+  base.solver.frames = 0;
+  fmt::print("bench-fe-static: {} (one core; median of {} runs)\n", s.name, o.repeats);
+  fmt::print("{:>22} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>10} {:>10}\n", "mesh", "elems", "dofs", "incs",
+             "cuts", "it/inc", "us/it", "median_s", "Pmax_N");
+  auto bench = [&](const std::string& label, fe::FeInput in) {
+    std::vector<double> times;
+    fe::StaticResult r;
+    for (int k = 0; k < o.repeats; ++k) {
+      r = fe::run_static(in);
+      times.push_back(r.statistics.wall_time_s);
+    }
+    const auto& st = r.statistics;
+    double pmax = 0;
+    for (const auto& h : r.history) pmax = std::max(pmax, h.force_n);
+    fmt::print("{:>22} {:>6} {:>6} {:>6} {:>6} {:>9.2f} {:>9.1f} {:>10.3f} {:>10.2f}\n", label,
+               r.mesh.elements.size(), 2 * r.mesh.nodes.size(), st.increments, st.cutbacks,
+               double(st.newton_iterations) / double(st.increments),
+               1e6 * st.wall_time_s / double(st.newton_iterations), median(times), pmax);
+    return r;
+  };
+  auto mesh_label = [](const fe::FeInput& in) {
+    return fmt::format("{}x{} ({})", in.mesh.elements_around, in.mesh.elements_through,
+                       in.mesh.half_ring ? "half" : "full");
+  };
+  bench(mesh_label(base), base);
+  fe::FeInput fine = base;
+  fine.mesh.elements_around *= 2;
+  fine.mesh.elements_through *= 2;
+  bench(mesh_label(fine) + " 4x", fine);
+  if (!o.convergence) return;
+  // Mesh convergence of the load at δ/d = 0.3 and 0.6 (issue 3 verification f).
+  const double d = s.rings.outer_diameter_m - s.rings.wall_thickness_m;
+  fmt::print("\nmesh convergence (load at delta/d = 0.3 and 0.6):\n{:>22} {:>12} {:>12}\n", "mesh", "P(0.3)_N", "P(0.6)_N");
+  std::vector<std::pair<double, double>> loads;
+  for (int k = 0; k < 3; ++k) {
+    fe::FeInput in = base;
+    in.mesh.elements_around = base.mesh.elements_around << k;
+    in.mesh.elements_through = base.mesh.elements_through << k;
+    in.solver.crush_m = std::min(base.solver.crush_m, 0.61 * d);
+    const fe::StaticResult r = fe::run_static(in);
+    loads.emplace_back(load_at(r, 0.3 * d), load_at(r, 0.6 * d));
+    fmt::print("{:>22} {:>12.2f} {:>12.2f}\n", mesh_label(in), loads.back().first, loads.back().second);
+  }
+  fmt::print("two finest differ by {:.2f} % (0.3) and {:.2f} % (0.6)\n",
+             100 * std::abs(loads[2].first - loads[1].first) / loads[2].first,
+             100 * std::abs(loads[2].second - loads[1].second) / loads[2].second);
+}
+
+void add_bench_command(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  auto* cmd = app.add_subcommand("bench-fe-static",
+                                 "Benchmark the FE static crush: own mesh, 4x finer mesh, mesh convergence");
+  cmd->add_option("scene", o->scene, "Static scene (default data/scenes/thesis_static.toml)")->check(CLI::ExistingFile);
+  cmd->add_option("--repeats", o->repeats, "Timed runs per mesh (median reported)")->check(CLI::Range(1, 50));
+  cmd->add_flag("!--no-convergence", o->convergence, "Skip the three-mesh convergence study");
+  cmd->callback([o] { run_bench(*o); });
+}
+
+const CommandRegistration registration{20, add_fe_command};
+const CommandRegistration bench_registration{21, add_bench_command};
+}  // namespace
+
+}  // namespace ringcrush::compare::cli

@@ -1,0 +1,259 @@
+#include "fe/contact/ring_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace ringcrush::fe {
+
+namespace {
+
+// Closest point of xs on the piece (Newton on (x(f) − xs)·x'(f) = 0 from the best sample).
+// Returns false when the closest point is an end of the piece that is not a stationary point
+// (the neighbouring piece or nobody owns the node).
+bool project(const CurvePiece& p, const double* xy, double& f, bool strict) {
+  // strict = false (tangent differencing): the piece's polynomial continues past its ends,
+  // which matches the C¹ neighbour to second order.
+  const double lo = strict ? p.lo : p.lo - 0.5, hi = strict ? p.hi : p.hi + 0.5;
+  double c[5], dc[5], ddc[5];
+  const double xs = xy[0], ys = xy[1];
+  auto eval = [&](double t, double& px, double& py, double& tx, double& ty, double& kx, double& ky) {
+    p.coefficients(t, c, dc, ddc);
+    px = py = tx = ty = kx = ky = 0;
+    for (int k = 0; k < p.count; ++k) {
+      const double nx = xy[2 + 2 * k], ny = xy[3 + 2 * k];
+      px += c[k] * nx; py += c[k] * ny;
+      tx += dc[k] * nx; ty += dc[k] * ny;
+      kx += ddc[k] * nx; ky += ddc[k] * ny;
+    }
+  };
+  double px, py, tx, ty, kx, ky;
+  if (!(f >= lo && f <= hi)) {
+    double best = 1e300;
+    for (int s = 0; s <= 4; ++s) {
+      const double t = p.lo + (p.hi - p.lo) * s / 4.0;
+      eval(t, px, py, tx, ty, kx, ky);
+      const double d2 = (px - xs) * (px - xs) + (py - ys) * (py - ys);
+      if (d2 < best) { best = d2; f = t; }
+    }
+  }
+  for (int it = 0; it < 30; ++it) {
+    eval(f, px, py, tx, ty, kx, ky);
+    const double r = (px - xs) * tx + (py - ys) * ty;
+    const double dr = tx * tx + ty * ty + (px - xs) * kx + (py - ys) * ky;
+    double step = dr > 0 ? -r / dr : (r > 0 ? -0.25 : 0.25) * (p.hi - p.lo);
+    double next = std::clamp(f + step, lo, hi);
+    const double moved = std::abs(next - f);
+    f = next;
+    if (moved < 1e-14) break;
+  }
+  eval(f, px, py, tx, ty, kx, ky);
+  const double r = (px - xs) * tx + (py - ys) * ty;
+  const double scale = std::sqrt(tx * tx + ty * ty) * std::hypot(px - xs, py - ys);
+  if (!strict) return true;
+  const double tol = 1e-9 * (p.hi - p.lo);
+  if (f <= p.lo + tol && r > 1e-9 * scale) return false;   // minimum lies before the piece
+  if (f >= p.hi - tol && r < -1e-9 * scale) return false;  // minimum lies after the piece
+  return true;
+}
+
+}  // namespace
+
+bool self_contact_force(const CurvePiece& p, const double* xy, double k, double max_depth, double* force,
+                        double& gap, double& f, bool strict) {
+  const int n = 2 + 2 * p.count;
+  std::fill(force, force + n, 0.0);
+  if (!project(p, xy, f, strict)) return false;
+  double c[5], dc[5], ddc[5];
+  p.coefficients(f, c, dc, ddc);
+  double px = 0, py = 0, tx = 0, ty = 0;
+  for (int a = 0; a < p.count; ++a) {
+    px += c[a] * xy[2 + 2 * a]; py += c[a] * xy[3 + 2 * a];
+    tx += dc[a] * xy[2 + 2 * a]; ty += dc[a] * xy[3 + 2 * a];
+  }
+  const double tl = std::hypot(tx, ty);
+  // Left normal of a counter-clockwise inner wall points into the hole.
+  const double nx = -ty / tl, ny = tx / tl;
+  gap = (xy[0] - px) * nx + (xy[1] - py) * ny;
+  if (!(gap < 0 && gap > -max_depth)) return false;
+  // Energy ½ k g²: ∂/∂x_s = k g n, ∂/∂x_a = −k g c_a n (the terms through f and n vanish
+  // at the closest point since (x_s − x)·x' = 0 and n·∂n = 0).
+  force[0] = k * gap * nx;
+  force[1] = k * gap * ny;
+  for (int a = 0; a < p.count; ++a) {
+    force[2 + 2 * a] = -k * gap * c[a] * nx;
+    force[3 + 2 * a] = -k * gap * c[a] * ny;
+  }
+  return true;
+}
+
+RingContact::RingContact(const RingMesh& mesh, const ContactInput& input, double e, double width)
+    : mesh_(mesh), in_(input), width_(width), band_(1e-9 * mesh.element_depth) {
+  const double kscale = input.penalty_scale * e * width / mesh.element_depth;
+  for (double w : mesh.outer_weight) {
+    k_outer_.push_back(kscale * w);
+    area_outer_.push_back(w * width);
+  }
+  if (!input.self_contact) return;
+  const double pi = std::numbers::pi;
+  // Lower (y < 0) and upper (y > 0) halves of the inner wall in the reference configuration.
+  auto lower = [&](double phi) {
+    const double y = -std::cos(phi);
+    return y < -1e-12;
+  };
+  auto upper = [&](double phi) { return -std::cos(phi) > 1e-12; };
+  const auto& segs = mesh.inner_segments;
+  auto chains = [&](auto pred) {
+    std::vector<std::vector<SurfaceSegment>> out;
+    const std::size_t n = segs.size();
+    auto in_set = [&](std::size_t s) { return pred(mesh.node_angle[segs[s].nodes[1]]); };
+    // Start at a segment whose predecessor is not in the set (ring may wrap).
+    std::size_t start = 0;
+    if (!mesh.half_ring)
+      for (std::size_t s = 0; s < n; ++s)
+        if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
+    std::vector<SurfaceSegment> cur;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t s = (start + i) % n;
+      if (in_set(s)) cur.push_back(segs[s]);
+      else if (!cur.empty()) { out.push_back(cur); cur.clear(); }
+    }
+    if (!cur.empty()) out.push_back(cur);
+    return out;
+  };
+  auto make_pass = [&](auto slave_pred, auto master_pred) {
+    Pass p;
+    for (std::size_t i = 0; i < mesh.inner_nodes.size(); ++i) {
+      const int node = mesh.inner_nodes[i];
+      if (!slave_pred(mesh.node_angle[node])) continue;
+      p.slaves.push_back(node);
+      p.slave_k.push_back(kscale * mesh.inner_weight[i]);
+      p.slave_area.push_back(mesh.inner_weight[i] * width);
+    }
+    for (const auto& ch : chains(master_pred)) {
+      auto pieces = smoothed_chain(ch, input.smoothing);
+      p.pieces.insert(p.pieces.end(), pieces.begin(), pieces.end());
+    }
+    return p;
+  };
+  passes_.push_back(make_pass(lower, upper));
+  if (input.self_contact_two_pass) passes_.push_back(make_pass(upper, lower));
+  (void)pi;
+}
+
+bool RingContact::self_pair(const Pass&, const Eigen::Vector2d& xs, int slave, const CurvePiece& piece,
+                            const std::vector<Eigen::Vector2d>& x, double& f, double& gap, double& dist) const {
+  // Broad phase: reference separation along the wall and a box around the piece.
+  const double pi = std::numbers::pi;
+  for (int a = 0; a < piece.count; ++a) {
+    double d = std::abs(mesh_.node_angle[slave] - mesh_.node_angle[piece.nodes[a]]);
+    d = std::min(d, 2 * pi - d);
+    if (d < in_.self_contact_min_separation_rad) return false;
+  }
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+  for (int a = 0; a < piece.count; ++a) {
+    const auto& p = x[piece.nodes[a]];
+    lo_x = std::min(lo_x, p.x()); hi_x = std::max(hi_x, p.x());
+    lo_y = std::min(lo_y, p.y()); hi_y = std::max(hi_y, p.y());
+  }
+  const double pad = mesh_.element_depth + 0.1 * std::max(hi_x - lo_x, hi_y - lo_y);
+  if (xs.x() < lo_x - pad || xs.x() > hi_x + pad || xs.y() < lo_y - pad || xs.y() > hi_y + pad) return false;
+  double xy[12], force[12];
+  xy[0] = xs.x(); xy[1] = xs.y();
+  for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
+  f = piece.lo - 1.0;  // outside the range: start from samples
+  const bool ok = self_contact_force(piece, xy, 1.0, mesh_.element_depth, force, gap, f, true);
+  if (!ok) return false;
+  dist = std::abs(gap);
+  return true;
+}
+
+void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, double y_bottom, bool want_tangent,
+                           bool want_pressure, std::vector<ContactContribution>& out, ContactState& st) const {
+  st = ContactState{};
+  if (want_pressure) st.node_pressure.assign(mesh_.nodes.size(), 0.0);
+  // Rigid plates (node to plane; the plate is flat, so the gap is exact).
+  for (std::size_t i = 0; i < mesh_.outer_nodes.size(); ++i) {
+    const int node = mesh_.outer_nodes[i];
+    const double k = k_outer_[i];
+    for (int plate = 0; plate < 2; ++plate) {
+      const double sign = plate == 0 ? -1.0 : 1.0;  // outward normal of the plate into the ring
+      const double gap = plate == 0 ? y_top - x[node].y() : x[node].y() - y_bottom;
+      if (gap >= band_) continue;
+      ContactContribution c;
+      c.count = 1;
+      c.nodes[0] = node;
+      if (gap < 0) {
+        // Energy ½ k g², g = sign·(y − y_plate): force k g sign on u_y.
+        c.force(1) = k * gap * sign;
+        const double f = -k * gap;
+        (plate == 0 ? st.top_force : st.bottom_force) += f;
+        st.energy += 0.5 * k * gap * gap;
+        st.max_plate_penetration = std::max(st.max_plate_penetration, -gap);
+        ++st.plate_contacts;
+        if (want_pressure) st.node_pressure[node] += f / area_outer_[i];
+      }
+      if (want_tangent) c.tangent(1, 1) = k;
+      out.push_back(c);
+    }
+  }
+  // Inner wall against itself.
+  for (const Pass& p : passes_) {
+    for (std::size_t s = 0; s < p.slaves.size(); ++s) {
+      const int node = p.slaves[s];
+      const Eigen::Vector2d& xs = x[node];
+      int best = -1;
+      double best_dist = 1e300, best_f = 0, gap = 0;
+      for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+        double f, g, dist;
+        if (self_pair(p, xs, node, p.pieces[q], x, f, g, dist) && dist < best_dist) {
+          best = static_cast<int>(q); best_dist = dist; best_f = f; gap = g;
+        }
+      }
+      if (best < 0) continue;
+      const CurvePiece& piece = p.pieces[best];
+      const double k = p.slave_k[s];
+      ContactContribution c;
+      c.count = 1 + piece.count;
+      c.nodes[0] = node;
+      double xy[12];
+      xy[0] = xs.x(); xy[1] = xs.y();
+      for (int a = 0; a < piece.count; ++a) {
+        c.nodes[1 + a] = piece.nodes[a];
+        xy[2 + 2 * a] = x[piece.nodes[a]].x();
+        xy[3 + 2 * a] = x[piece.nodes[a]].y();
+      }
+      const int n = 2 * c.count;
+      double f = best_f, g;
+      self_contact_force(piece, xy, k, mesh_.element_depth, c.force.data(), g, f, true);
+      if (want_tangent) {
+        // Tangent by central differences of the exact local force (a 12×12 block at most);
+        // symmetrised, since the force is the gradient of the penalty energy.
+        const double h = 1e-7 * mesh_.element_depth;
+        double fp[12], fm[12];
+        for (int j = 0; j < n; ++j) {
+          const double keep = xy[j];
+          double gg, ff = best_f;
+          xy[j] = keep + h;
+          self_contact_force(piece, xy, k, 10 * mesh_.element_depth, fp, gg, ff, false);
+          ff = best_f;
+          xy[j] = keep - h;
+          self_contact_force(piece, xy, k, 10 * mesh_.element_depth, fm, gg, ff, false);
+          xy[j] = keep;
+          for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * h);
+        }
+        const Eigen::Matrix<double, 12, 12> t = c.tangent;
+        c.tangent = 0.5 * (t + t.transpose());
+      }
+      const double fn = -k * gap;
+      st.self_force += fn;
+      st.energy += 0.5 * k * gap * gap;
+      st.max_self_penetration = std::max(st.max_self_penetration, -gap);
+      ++st.self_contacts;
+      if (want_pressure) st.node_pressure[node] += fn / p.slave_area[s];
+      out.push_back(c);
+    }
+  }
+}
+
+}  // namespace ringcrush::fe

@@ -1,0 +1,68 @@
+// Contact of one ring (DESIGN.md "Contact", thesis §3.6.2–3.6.3), frictionless penalty:
+//  - rigid plates: the outer-surface nodes against the planes y = y_bottom (fixed target)
+//    and y = y_top (driven); gap g = (y − y_bottom) or (y_top − y);
+//  - the inner wall against itself (lock-up): nodes of one inner half against the
+//    Hermite-smoothed quadratic surface of the other half (two passes by default).
+// Penalty energy ½ k g² for g < 0 with k = penalty_scale · E · L · w / h (fe_input.hpp), so
+// the force is the gradient of a potential and the tangent is symmetric.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "fe/contact/contact_element.hpp"
+#include "fe/contact/smoothed_surface.hpp"
+#include "fe/fe_input.hpp"
+#include "fe/mesh/ring_mesh.hpp"
+
+namespace ringcrush::fe {
+
+struct ContactState {
+  double top_force = 0;         // force the driven plate exerts on the model (≥ 0, downward)
+  double bottom_force = 0;      // force the fixed plate exerts on the model (≥ 0, upward)
+  double self_force = 0;        // Σ |normal force| of inner-wall contact (per pass pair)
+  double energy = 0;            // penalty energy
+  double max_plate_penetration = 0;
+  double max_self_penetration = 0;
+  int plate_contacts = 0, self_contacts = 0;
+  std::vector<double> node_pressure;  // contact pressure per node (filled on request)
+};
+
+class RingContact {
+ public:
+  RingContact(const RingMesh& mesh, const ContactInput& input, double youngs_modulus, double width);
+
+  // x: current coordinates of all nodes. Appends the active contributions.
+  void evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, double y_bottom, bool want_tangent,
+                bool want_pressure, std::vector<ContactContribution>& out, ContactState& state) const;
+
+  double penalty_of_outer(std::size_t i) const { return k_outer_[i]; }
+
+ private:
+  struct Pass {
+    std::vector<int> slaves;        // node ids
+    std::vector<double> slave_k;    // penalty per slave
+    std::vector<double> slave_area; // tributary area (w L) per slave
+    std::vector<CurvePiece> pieces; // master surface
+  };
+  bool self_pair(const Pass& p, const Eigen::Vector2d& xs, int slave, const CurvePiece& piece,
+                 const std::vector<Eigen::Vector2d>& x, double& f, double& gap, double& dist) const;
+
+  const RingMesh& mesh_;
+  ContactInput in_;
+  double width_;
+  std::vector<double> k_outer_, area_outer_;
+  std::vector<Pass> passes_;
+  // Plate contacts that just touch (gap below this round-off band, e.g. the two contact
+  // points of the unloaded ring) carry stiffness but no force: this keeps the vertical
+  // rigid-body motion restrained at the start without disturbing Newton later.
+  double band_;
+};
+
+// Local force of a slave node against a curve piece as a function of the coordinates of the
+// slave and the piece nodes (12 values max): k g [n; −c_k n] for g < 0 (used by the
+// assembler through finite differences for the tangent and tested alone).
+bool self_contact_force(const CurvePiece& piece, const double* coords, double k, double max_depth,
+                        double* force, double& gap, double& f_hint, bool strict = true);
+
+}  // namespace ringcrush::fe
