@@ -105,6 +105,7 @@ void ChainInput::validate() const {
   require(impactor_mass_kg > 0, "impactor mass must be positive");
   require(impactor_velocity_m_s > 0 && std::isfinite(impactor_velocity_m_s),
           "impactor velocity must be positive");
+  require(impactor_spring_n_m >= 0, "impactor spring stiffness must not be negative");
 }
 
 double ChainResult::energy_balance_error() const {

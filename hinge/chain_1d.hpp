@@ -57,6 +57,9 @@ struct ChainInput {
   ChainFarEnd far_end = ChainFarEnd::Fixed;
   double impactor_mass_kg = 0.0;        // full mass
   double impactor_velocity_m_s = 0.0;   // toward the chain
+  // Level 1 only: an elastic series spring between the impactor and ring 1 (no tension);
+  // 0: rigid contact (the first contact is then a plastic impact).
+  double impactor_spring_n_m = 0.0;
   void validate() const;
 };
 

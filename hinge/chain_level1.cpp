@@ -16,6 +16,11 @@
 // every lock-up are perfectly plastic impacts (velocity-level complementarity); their
 // kinetic-energy losses are booked as impact energy.
 //
+// Optional elastic series spring (k_s, no tension) between the impactor and ring 1: the
+// impactor then has its own coordinate x, ring 1's top face is massless, the spring force
+// F_s = k_s⟨x − u_0(q)⟩ acts on x and, through ∂u_0/∂φ_j = d cos φ_j, on the rings; contact
+// opening/closing of the spring is an event. Without it the first contact is a plastic impact.
+//
 // DAE form (IDA): y = [q, q̇, λ], λ algebraic, residual rows q′ − q̇, 𝓜 q̇′ − b + λ and, per
 // ring, λ_i − 8M0h(φ_i) (crushing) or φ̈_i (rigid, locked); IDACalcIC finds λ at restarts.
 // ODE form (Odeint): q̈ from the same equations with λ eliminated; λ components idle.
@@ -39,9 +44,11 @@ class Level1Chain final : public HybridSystem {
   explicit Level1Chain(const ChainInput& in) : in_(in), law_(in.ring) {
     n_ = in.rings;
     free_end_ = in.far_end == ChainFarEnd::Free;
-    nq_ = n_ + (free_end_ ? 1 : 0);
+    spring_ = in.impactor_spring_n_m > 0.0;
+    nq_ = n_ + (free_end_ ? 1 : 0) + (spring_ ? 1 : 0);
+    ix_ = nq_ - 1;
     body_mass_.assign(n_ + 1, in.joint == ChainJoint::Plates ? in.plate_mass_kg : 0.0);
-    body_mass_[0] = in.impactor_mass_kg;
+    body_mass_[0] = spring_ ? 0.0 : in.impactor_mass_kg;
     body_mass_[n_] = 0.0;  // target, or nothing behind the last ring
     d_ = law_.mean_diameter();
     phi_lock_ = law_.lock_angle();
@@ -54,8 +61,8 @@ class Level1Chain final : public HybridSystem {
     v_common_ = free_end_ ? in.impactor_mass_kg * vref_ / total : 0.0;
     m_.resize(nq_, nq_);
     b_.resize(nq_);
-    a_.resize(nq_);
-    w_.resize(nq_);
+    a_ = Eigen::VectorXd::Zero(nq_);
+    w_ = Eigen::VectorXd::Zero(nq_);
   }
 
   // Identical rigid rings in series that carry the same force reach their collapse force at
@@ -66,7 +73,18 @@ class Level1Chain final : public HybridSystem {
   double collapse_force(int i, double phi) const { return strength_[i] * law_.generalized_force(phi); }
 
   std::size_t size() const override { return 2 * nq_ + n_; }
-  std::size_t root_count() const override { return 3 * n_ + 1; }
+  std::size_t root_count() const override { return 3 * n_ + 1 + (spring_ ? 1 : 0); }
+
+  // Position of ring 1's top face and the series spring's force.
+  double top_position(const double* q) const {
+    double u = free_end_ ? q[n_] : 0.0;
+    for (int j = 0; j < n_; ++j) u += d_ * std::sin(q[j]);
+    return u;
+  }
+  double spring_force(const double* q) const {
+    if (!spring_ || spring_open_) return 0.0;
+    return in_.impactor_spring_n_m * (q[ix_] - top_position(q));
+  }
   std::vector<double> differential_mask() const override {
     std::vector<double> id(size(), 1.0);
     for (int i = 0; i < n_; ++i) id[2 * nq_ + i] = 0.0;
@@ -115,6 +133,13 @@ class Level1Chain final : public HybridSystem {
       add_outer(law_.mass_kg, w_, i);
       for (int j = i; j < nq_; ++j) b_(j) -= law_.mass_kg * wdot * w_(j);
       tail += sq[i];
+    }
+    if (spring_) {
+      m_(ix_, ix_) += in_.impactor_mass_kg;
+      const double fs = spring_force(q);
+      b_(ix_) -= fs;
+      for (int j = 0; j < n_; ++j) b_(j) += fs * c[j];
+      if (free_end_) b_(n_) += fs;
     }
     for (int i = 0; i < n_; ++i) {
       m_(i, i) += law_.inertia(q[i]);
@@ -200,22 +225,26 @@ class Level1Chain final : public HybridSystem {
       g[3 * i + 2] = mode_[i] == RingMode::Crushing ? phi_lock_ - q[i] : 1.0;
     }
     g[3 * n_] = (impactor_velocity(q, qd) - v_common_) / vref_;
+    if (spring_)
+      g[3 * n_ + 1] = in_.impactor_spring_n_m * (q[ix_] - top_position(q)) / law_.collapse_load();
   }
 
   double impactor_velocity(const double* q, const double* qd) const {
+    if (spring_) return qd[ix_];
     double v = free_end_ ? qd[n_] : 0.0;
     for (int j = 0; j < n_; ++j) v += d_ * std::cos(q[j]) * qd[j];
     return v;
   }
 
-  // After a mode switch every ring root is expected to grow away from zero: a crushing
-  // ring's rate, a rigid ring's margin below collapse, its (compressive) force, the distance
-  // to lock. Roots whose meaning did not change keep the direction they crossed in.
+  // After a restart every ring root is expected to grow away from zero: a crushing ring's
+  // rate, a rigid ring's margin below collapse, its (compressive) force, the distance to lock.
   int root_departure(std::size_t r, int fired) const override {
     if (r == static_cast<std::size_t>(3 * n_)) return fired != 0 ? fired : (arrest_time_ < 0.0 ? 1 : 0);
-    const auto i = r / 3;
-    if (mode_[i] != mode_before_[i]) return 1;
-    return fired != 0 ? fired : 1;
+    if (r == static_cast<std::size_t>(3 * n_ + 1)) return fired != 0 ? fired : (spring_open_ ? -1 : 1);
+    // Ring roots: positive in every admissible state of the current mode. A root that
+    // crossed without a mode change (a degenerate complementarity kept the ring rigid) must
+    // grow again, or cross again and be re-examined.
+    return 1;
   }
 
   EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
@@ -223,8 +252,25 @@ class Level1Chain final : public HybridSystem {
     double* qd = y.data() + nq_;
     bool impact = false;
     mode_before_ = mode_;
+    if (spring_ && fired[3 * n_ + 1] < 0 && !spring_open_) {
+      spring_open_ = true;
+      log(t, "contact_opened", -1, "impactor spring unloaded (no tension)");
+    } else if (spring_ && fired[3 * n_ + 1] > 0 && spring_open_) {
+      spring_open_ = false;
+      log(t, "contact_closed", -1, "impactor spring");
+    }
+    // A rigid ring's force reaching zero as the series spring lets go is the unloading of
+    // the whole (rigid, at rest) chain, not tension.
+    if (spring_ && !spring_open_ && std::abs(spring_force(q)) < 1e-9 * law_.collapse_load()) {
+      for (int i = 0; i < n_; ++i)
+        if (fired[3 * i + 1] < 0) {
+          spring_open_ = true;
+          log(t, "contact_opened", -1, "impactor spring unloaded (no tension)");
+          break;
+        }
+    }
     for (int i = 0; i < n_; ++i) {
-      if (fired[3 * i + 1] < 0)
+      if (fired[3 * i + 1] < 0 && !(spring_ && spring_open_))
         throw std::runtime_error(fmt::format(
             "Level 1: ring {} would carry tension at t = {:.9g} s; contact separation is not "
             "modelled at Level 1 (use Level 0)", i + 1, t));
@@ -245,9 +291,14 @@ class Level1Chain final : public HybridSystem {
       log(t, "impactor_arrested", -1, free_end_ ? "impactor at the common velocity" : "impactor at rest");
     }
     if (impact) apply_impact(q, qd);
-    select_modes(q, qd, t);
+    std::vector<char> loaded(n_, 0);
+    for (int i = 0; i < n_; ++i) loaded[i] = fired[3 * i] < 0 && mode_before_[i] == RingMode::Rigid;
+    select_modes(q, qd, t, loaded);
     for (int i = 0; i < n_; ++i)
       if (mode_[i] == RingMode::Crushing) return EventAction::Continue;
+    // With the series spring the impactor can still load the (rigid) chain: go on until it
+    // has been arrested and the spring has let go.
+    if (spring_ && !(arrest_time_ >= 0.0 && spring_open_)) return EventAction::Continue;
     if (arrest_time_ < 0.0) arrest_time_ = t;
     log(t, "chain_at_rest", -1, free_end_ ? "no ring crushes: rigid-body motion" : "no ring crushes");
     return EventAction::Stop;
@@ -278,7 +329,7 @@ class Level1Chain final : public HybridSystem {
 
   // Acceleration-level complementarity for the rings at rest (not locked): each either
   // crushes (φ̈ ≥ 0, λ = 8M0h) or stays rigid (φ̈ = 0, λ ≤ 8M0h).
-  void select_modes(const double* q, const double* qd, double t) {
+  void select_modes(const double* q, const double* qd, double t, const std::vector<char>& loaded = {}) {
     assemble(q, qd);
     Eigen::VectorXd r = b_;
     std::vector<char> comp(nq_, 0), zero(nq_, 0);
@@ -290,7 +341,11 @@ class Level1Chain final : public HybridSystem {
       r(i) -= collapse_force(i, q[i]);
       if (mode_[i] == RingMode::Rigid || qd[i] <= 0.0) comp[i] = 1;
     }
-    const auto lcp = solve_mass_lcp(m_, r, comp, zero);
+    // A rigid ring whose force has just reached its collapse force crushes in a tie; a ring
+    // that has just stopped stays rigid in a tie.
+    std::vector<char> prefer(nq_, 0);
+    for (int i = 0; i < n_ && !loaded.empty(); ++i) prefer[i] = loaded[i];
+    const auto lcp = solve_mass_lcp(m_, r, comp, zero, prefer);
     for (int i = 0; i < n_; ++i) {
       if (!comp[i]) continue;
       const RingMode next = lcp.held[i] ? RingMode::Rigid : RingMode::Crushing;
@@ -303,9 +358,21 @@ class Level1Chain final : public HybridSystem {
 
   std::vector<double> initial_state() {
     std::vector<double> y(size(), 0.0);
-    // First contact: the impactor's momentum M V a_0 shared by a plastic impact.
     double* q = y.data();
     double* qd = y.data() + nq_;
+    if (spring_) {
+      // The spring starts unloaded: the impactor moves, every ring is at rest and rigid.
+      qd[ix_] = in_.impactor_velocity_m_s;
+      for (int i = 0; i < n_; ++i) mode_[i] = RingMode::Rigid;
+      impact_loss_ = 0.0;
+      select_modes(q, qd, 0.0);
+      Eigen::VectorXd qdd, lambda;
+      assemble(q, qd);
+      accelerations(q, qdd, lambda);
+      for (int i = 0; i < n_; ++i) y[2 * nq_ + i] = lambda(i);
+      return y;
+    }
+    // First contact: the impactor's momentum M V a_0 shared by a plastic impact.
     assemble(q, qd);
     Eigen::VectorXd a0 = Eigen::VectorXd::Zero(nq_);
     for (int j = 0; j < n_; ++j) a0(j) = d_;
@@ -348,11 +415,20 @@ class Level1Chain final : public HybridSystem {
     }
     Eigen::Map<const Eigen::VectorXd> v(qd, nq_);
     h.time_s.push_back(t);
-    h.impactor_displacement_m.push_back(u0);
-    h.impactor_velocity_m_s.push_back(v0);
-    h.impactor_force_n.push_back(-in_.impactor_mass_kg * a0);
+    double elastic = 0.0;
+    if (spring_) {
+      const double fs = spring_force(q);
+      h.impactor_displacement_m.push_back(q[ix_]);
+      h.impactor_velocity_m_s.push_back(qd[ix_]);
+      h.impactor_force_n.push_back(fs);
+      elastic = 0.5 * fs * fs / in_.impactor_spring_n_m;
+    } else {
+      h.impactor_displacement_m.push_back(u0);
+      h.impactor_velocity_m_s.push_back(v0);
+      h.impactor_force_n.push_back(-in_.impactor_mass_kg * a0);
+    }
     h.kinetic_j.push_back(0.5 * v.dot(m_ * v));
-    h.elastic_j.push_back(0.0);
+    h.elastic_j.push_back(elastic);
     h.plastic_j.push_back(pl);
     h.impact_loss_j.push_back(impact_loss_);
   }
@@ -367,8 +443,8 @@ class Level1Chain final : public HybridSystem {
 
   ChainInput in_;
   RingLaw law_;
-  int n_ = 0, nq_ = 0;
-  bool free_end_ = false;
+  int n_ = 0, nq_ = 0, ix_ = -1;
+  bool free_end_ = false, spring_ = false, spring_open_ = false;
   std::vector<double> body_mass_;
   double d_ = 0, phi_lock_ = 0, vref_ = 1, v_common_ = 0;
   std::vector<RingMode> mode_, mode_before_;

@@ -6,7 +6,8 @@
 namespace ringcrush::hinge {
 
 MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd& p,
-                             const std::vector<char>& complementary, const std::vector<char>& zero) {
+                             const std::vector<char>& complementary, const std::vector<char>& zero,
+                             const std::vector<char>& prefer_free) {
   const Eigen::Index n = p.size();
   if (mass.rows() != n || mass.cols() != n) throw std::invalid_argument("solve_mass_lcp: size mismatch");
   MassLcpResult r;
@@ -41,7 +42,9 @@ MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd&
     for (Eigen::Index i = 0; i < n && flip < 0; ++i) {
       if (!complementary[i] || zero[i]) continue;
       const double xs = r.x(i) * mass(i, i);  // on the scale of p
-      if ((!r.held[i] && xs < tol) || (r.held[i] && r.mu(i) < -tol)) flip = i;
+      const bool free_wins = !prefer_free.empty() && prefer_free[i];
+      if ((!r.held[i] && xs < (free_wins ? -tol : tol)) || (r.held[i] && r.mu(i) < (free_wins ? tol : -tol)))
+        flip = i;
     }
     if (flip < 0) return r;
     r.held[flip] = !r.held[flip];

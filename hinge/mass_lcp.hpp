@@ -25,8 +25,10 @@ struct MassLcpResult {
 
 // complementary[i], zero[i]: flags per component (zero wins). Throws std::runtime_error if
 // the pivoting does not terminate (a non-positive-definite 𝓜).
+// Degenerate components (x_i ≈ 0 and μ_i ≈ 0) are held at zero unless prefer_free[i].
 MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd& p,
                              const std::vector<char>& complementary,
-                             const std::vector<char>& zero);
+                             const std::vector<char>& zero,
+                             const std::vector<char>& prefer_free = {});
 
 }  // namespace ringcrush::hinge
