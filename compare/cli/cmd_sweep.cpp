@@ -5,7 +5,9 @@
 //   mpirun -n 2 ringcrush sweep GRID -o DIR        (built with -DRINGCRUSH_WITH_MPI=ON)
 //   ringcrush sweep GRID -o DIR --case $SLURM_ARRAY_TASK_ID   (one case; see README, Slurm)
 //   ringcrush sweep GRID -o DIR --merge-only
+//   ringcrush sweep GRID --list                 (number of cases, then each case)
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -28,6 +30,7 @@ struct SweepCommand {
   int threads = 0;
   int only_case = -1;
   bool merge_only = false;
+  bool list = false;
 };
 
 // The rank and size of this process in an MPI job (1 process without MPI). A launch by
@@ -65,6 +68,12 @@ void plot_first_axis(const SweepGrid& grid, const std::filesystem::path& csv, co
 void run(const SweepCommand& o) {
   Ranks ranks;
   const SweepGrid grid = load_sweep_grid(o.grid);
+  if (o.list) {  // "N cases", then one line per case: name and axis values
+    fmt::print("{} cases\n", grid.cases.size());
+    for (const auto& c : grid.cases) fmt::print("{} {}\n", c.name, fmt::join(c.values, " "));
+    return;
+  }
+  if (o.output.empty()) throw std::invalid_argument("sweep: -o DIR is required");
   const auto& models = sweep_model_registry();
   const auto model = models.find(grid.model);
   if (model == models.end()) throw std::invalid_argument(fmt::format("sweep model \"{}\" is not available", grid.model));
@@ -148,7 +157,8 @@ void add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<SweepCommand>();
   auto* cmd = app.add_subcommand("sweep", "Run a parameter grid of scenes (resumable; all cores; MPI optional)");
   cmd->add_option("grid", o->grid, "Grid file (TOML; see compare/sweep.hpp)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", o->output, "Sweep directory (one sub-directory per case)")->required();
+  cmd->add_option("-o,--output", o->output, "Sweep directory (one sub-directory per case)");
+  cmd->add_flag("--list", o->list, "Print the number of cases and each case's values, run nothing");
   cmd->add_option("-j,--threads", o->threads, "Cases run at once (default: all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--case", o->only_case, "Run only case K (e.g. $SLURM_ARRAY_TASK_ID)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--merge-only", o->merge_only, "Only gather finished cases into sweep.csv");

@@ -108,7 +108,15 @@ TEST(SweepCli, BadGridsAndUsageExitNonZero) {
   const fs::path g = dir / "g.toml";
   std::ofstream(g) << "base_scene = \"nope.toml\"\n[[axis]]\nkey = \"t_over_D\"\nvalues = [0.02]\n";
   EXPECT_EQ(run("sweep " + g.string() + " -o " + (dir / "o").string()), 2);
-  EXPECT_NE(run("sweep " + grid(dir).string()), 0);  // no -o
+  EXPECT_EQ(run("sweep " + grid(dir).string()), 2);  // no -o
+  // --list: the count, then one line per case (what a Slurm array needs).
+  FILE* p = popen((exe + " sweep " + grid(dir).string() + " --list").c_str(), "r");
+  char line[256] = {};
+  ASSERT_TRUE(std::fgets(line, sizeof line, p));
+  EXPECT_EQ(std::string(line), "8 cases\n");
+  ASSERT_TRUE(std::fgets(line, sizeof line, p));
+  EXPECT_EQ(std::string(line), "case_0000 0 15.0\n");
+  pclose(p);
   EXPECT_EQ(run("sweep " + grid(dir).string() + " -o " + (dir / "o2").string() + " --case 99"), 2);
   EXPECT_FALSE(fs::exists(dir / "o"));
 }
