@@ -26,7 +26,7 @@ double RingLaw::hardening_k() const {
 
 // Same value as ring_laws' redwood_load (tested), with one asin instead of three: this is
 // evaluated in every right-hand side and root function of Level 0.
-double RingLaw::backbone(double dp) const {
+double RingLaw::backbone_raw(double dp) const {
   const double d = mean_diameter();
   const double x = std::max(dp, 0.0) / d;
   if (!(x < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
@@ -38,7 +38,7 @@ double RingLaw::backbone(double dp) const {
 // With f(φ) = (1 + kφ)/cos φ, P_b = P0 f(φ) and dφ/dδ = 1/(d cos φ):
 //   f′ = k/c + (1 + kφ) s/c²,  f″ = 2k s/c² + (1 + kφ)(1 + s²)/c³,
 // where s = sin φ = δ/d and c = cos φ = √(1 − s²) need no trigonometric calls.
-double RingLaw::backbone_slope(double dp) const {
+double RingLaw::backbone_slope_raw(double dp) const {
   const double d = mean_diameter(), k = hardening_k();
   const double s = std::max(dp, 0.0) / d;
   if (!(s < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
@@ -47,7 +47,7 @@ double RingLaw::backbone_slope(double dp) const {
   return 8.0 * plastic_moment_nm / d * f1 / (d * c);
 }
 
-double RingLaw::backbone_curvature(double dp) const {
+double RingLaw::backbone_curvature_raw(double dp) const {
   const double d = mean_diameter(), k = hardening_k();
   const double s = std::max(dp, 0.0) / d;
   if (!(s < 1.0)) throw std::domain_error("ring crush beyond the mean diameter");
@@ -58,7 +58,29 @@ double RingLaw::backbone_curvature(double dp) const {
   return 8.0 * plastic_moment_nm / d / (d * c) * (f2 / (d * c) + f1 * s / (d * c * c));
 }
 
+// Past lock-up (δp > δ_L) the inner-wall contact carries the load (lock stiffness); the
+// backbone is continued linearly (C¹) so that an overloaded chain, compressed beyond solid,
+// stays defined instead of reaching the DeRuntz–Hodge singularity at δ = d. The work is
+// continued consistently.
+double RingLaw::backbone(double dp) const {
+  const double dl = lock_deflection();
+  if (dp <= dl) return backbone_raw(dp);
+  return backbone_raw(dl) + backbone_slope_raw(dl) * (dp - dl);
+}
+double RingLaw::backbone_slope(double dp) const {
+  const double dl = lock_deflection();
+  return backbone_slope_raw(std::min(dp, dl));
+}
+double RingLaw::backbone_curvature(double dp) const {
+  return dp <= lock_deflection() ? backbone_curvature_raw(dp) : 0.0;
+}
+
 double RingLaw::plastic_energy(double dp) const {
+  const double dl = lock_deflection();
+  if (dp > dl) {
+    const double x = dp - dl;
+    return plastic_energy(dl) + backbone_raw(dl) * x + 0.5 * backbone_slope_raw(dl) * x * x;
+  }
   return redwood_energy(plastic_moment_nm, hardening_modulus_pa, yield_stress_pa, redwood_alpha,
                         std::max(dp, 0.0), mean_diameter());
 }

@@ -29,7 +29,8 @@ struct RingLaw {
   double lock_angle() const;                                                        // φ_L
   double collapse_load() const;                                                     // P0 = 8M0/d
   double hardening_k() const;                                                       // E′/(3σ0α)
-  // Backbone in terms of the plastic crush δp, its first and second derivatives.
+  // Backbone in terms of the plastic crush δp, its first and second derivatives; continued
+  // linearly past δ_L (where the lock-up contact carries the load).
   double backbone(double dp) const;
   double backbone_slope(double dp) const;
   double backbone_curvature(double dp) const;
@@ -44,6 +45,11 @@ struct RingLaw {
   double inertia(double phi) const;
   double inertia_derivative(double phi) const;
   void validate() const;  // throws std::invalid_argument naming the bad value
+
+ private:
+  double backbone_raw(double dp) const;
+  double backbone_slope_raw(double dp) const;
+  double backbone_curvature_raw(double dp) const;
 };
 
 enum class ChainJoint { Welded, Free, Plates };

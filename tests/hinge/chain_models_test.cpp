@@ -190,6 +190,13 @@ TEST(RingLaw, BackboneDerivativesAndWorkAreConsistent) {
     EXPECT_NEAR(law.plastic_energy_at_angle(phi), law.plastic_energy(dp), 1e-9);
     EXPECT_NEAR(law.generalized_force(phi) / (d * std::cos(phi)), law.backbone(dp), 1e-6);
   }
+  // Past lock-up the backbone continues linearly and its work stays its integral (an
+  // overloaded chain compressed beyond solid stays defined).
+  const double dl = law.lock_deflection(), h = 1e-7 * d;
+  for (double dp : {dl - 1e-4, dl + 1e-4, dl + 1e-3, d + 1e-3}) {
+    EXPECT_NEAR((law.plastic_energy(dp + h) - law.plastic_energy(dp - h)) / (2 * h) / law.backbone(dp), 1.0, 1e-6) << dp;
+    EXPECT_NEAR(law.backbone_slope(dp) / ((law.backbone(dp + h) - law.backbone(dp - h)) / (2 * h)), 1.0, 1e-5) << dp;
+  }
   // THEORY §5 #14 and #20: DH work to lock 22.977 J, mean force to lock 482.7 N.
   const RingLaw dh = test30_ring(0.0);
   EXPECT_NEAR(dh.plastic_energy(dh.lock_deflection()), 22.977, 5e-4);
