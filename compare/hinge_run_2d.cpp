@@ -134,7 +134,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
                                     ? options.relative_tolerance
                                     : s.default_relative_tolerance;
   po.relative_tolerance = run.relative_tolerance_used;
-  po.absolute_scale = run.relative_tolerance_used;
+  po.absolute_scale = 1e-3 * run.relative_tolerance_used;  // × R, V, 1 rad, KE0
   po.output_interval_s = s.output_interval_s;
   po.settle_time_s = s.settle_time_s;
   if (is_static) {
@@ -177,11 +177,29 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   for (std::size_t i = 0; i < nsteps; ++i) r.contact_j[i] = h.contact_j[i] + h.contact_damping_j[i];
   r.external_work_j = h.external_j;
 
+  // Crush and inverted arc S on the final shapes; the wrapped angle W on the shapes at the
+  // impactor's arrest (largest compaction): once unloaded, free rings spring apart by more
+  // than the 0.1 t contact cap of W, although the wrapped shape stays.
   const auto final_shapes = ring_shapes(h.shapes.back(), t);
+  std::size_t arrest_sample = nsteps - 1;
+  if (raw.arrest_time_s >= 0)
+    for (std::size_t i = 0; i < nsteps; ++i)
+      if (h.time_s[i] >= raw.arrest_time_s) {
+        arrest_sample = i;
+        break;
+      }
+  const auto arrest_shapes = ring_shapes(h.shapes[arrest_sample], t);
+  WrapThresholds thresholds;
+  thresholds.min_inverted_arc_fraction = s.wrap_min_inverted_arc_fraction;
   for (std::size_t ring = 0; ring < final_shapes.size(); ++ring) {
-    const RingShape* lower = ring + 1 < final_shapes.size() ? &final_shapes[ring + 1] : nullptr;
-    if (scene.joints.type == JointType::Plates) lower = nullptr;  // a plate lies between
-    const auto w = measure_wrap(final_shapes[ring], lower, R, t);
+    const bool below = ring + 1 < final_shapes.size() && scene.joints.type != JointType::Plates;
+    WrapMeasure w;
+    w.inverted_arc_m = inverted_arc_length(final_shapes[ring]);
+    if (below) w.wrapped_angle_deg = wrapped_angle_deg(arrest_shapes[ring], arrest_shapes[ring + 1], 1.1 * t);
+    // Decided on S alone (THEORY §4.7); W is reported as supporting evidence. In free
+    // chains the wrapped arc of ring i bridges over the apex of ring i+1 (Test 30: a 4.5 mm
+    // gap on the axis, contact at 37–45°), where W, contiguous from the apex, reads 0.
+    w.wrap_around = w.inverted_arc_m > thresholds.min_inverted_arc_fraction * pi * R;
     const double c = crush_ratio(final_shapes[ring], D);
     r.crush_ratio.push_back(c);
     r.wrap_around.push_back(w.wrap_around);
@@ -224,6 +242,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
       {"ties", scene.joints.type == JointType::Welded ? "penalty springs" : "none"},
       {"arrest_time_s", raw.arrest_time_s >= 0 ? nlohmann::json(raw.arrest_time_s) : nlohmann::json()},
       {"end_time_s", raw.end_time_s},
+      {"wrapped_angle_measured_at_s", h.time_s[arrest_sample]},
       {"model_energy_balance_error", raw.energy_balance_error},
       {"numerical_damping_J", h.damping_j.back()},
       {"contact_damping_J", h.contact_damping_j.back()},
@@ -238,7 +257,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"contact_damping_s_per_m", s.contact_damping_s_per_m},
         {"tie_stiffness_scale", s.tie_stiffness_scale},
         {"membrane_damping_ratio", s.membrane_damping_ratio},
-        {"hinge_damping_ratio", s.hinge_damping_ratio}}}};
+        {"hinge_damping_ratio", s.hinge_damping_ratio},
+        {"wrap_min_inverted_arc_fraction", s.wrap_min_inverted_arc_fraction}}}};
   if (run.relative_tolerance_used != options.relative_tolerance)
     r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",
                                   options.relative_tolerance, s.min_relative_tolerance,

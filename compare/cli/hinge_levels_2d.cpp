@@ -1,8 +1,13 @@
 // Level 2 of the hinge model (hinge-spring polygon rings, THEORY §4.3–4.4) behind
-// `ringcrush hinge SCENE --level 2`, and its benchmark:
+// `ringcrush hinge SCENE --level 2`, the same run with its ring shapes, and its benchmark:
 //
 //   ringcrush hinge data/scenes/test30_welded.toml -o results/l2 --level 2
+//   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
+//
+// hinge-shapes writes what `hinge --level 2` writes (summary.json, history.csv, SVG plots)
+// plus shapes.pvd + frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the
+// plastic rotation per node) and shapes_final.svg (final shapes over the undeformed ones).
 //
 // bench-hinge2 runs the scene `repeat` times on one core and prints every wall time, the
 // median, the steps, and the final crush per ring with the wrap flags, so that the speed is
@@ -14,6 +19,9 @@
 
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_2d.hpp"
+#include "compare/hinge_shapes_output.hpp"
+#include "compare/results_dir.hpp"
+#include "compare/run_output.hpp"
 
 namespace ringcrush::compare {
 namespace {
@@ -50,6 +58,9 @@ void bench(const BenchOptions& o) {
              scene.name, o.integrator, scene.hinge.nodes_per_ring, last.relative_tolerance_used, median,
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
              last.raw.energy_balance_error);
+  const auto alt = alternation(last.result.crush_ratio);
+  fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
+             last.raw.arrest_time_s * 1e3);
   for (std::size_t r = 0; r < last.result.crush_ratio.size(); ++r)
     fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", r + 1, last.result.crush_ratio[r],
                last.result.wrapped_angle_deg[r], last.result.inverted_arc_m[r] * 1e3, last.result.mode[r]);
@@ -66,6 +77,54 @@ void add_bench_command(CLI::App& app) {
 }
 
 const cli::CommandRegistration bench_registration{92, add_bench_command};
+
+struct ShapesOptions {
+  std::string scene;
+  std::string output;
+  std::string integrator = "ida";
+  std::optional<double> rtol;
+  std::optional<int> frames;
+};
+
+void shapes(const ShapesOptions& o) {
+  const Scene scene = load_scene(o.scene);
+  HingeRunOptions opt;
+  opt.level = "2";
+  if (o.integrator != "ida" && o.integrator != "odeint")
+    throw std::invalid_argument("--integrator must be ida or odeint");
+  opt.integrator = o.integrator == "ida" ? HingeIntegrator::Ida : HingeIntegrator::Odeint;
+  opt.relative_tolerance = o.rtol ? *o.rtol : scene.hinge.relative_tolerance;
+  fmt::print("scene {}: {}\nhinge level 2 (polygon rings, N = {}) on {}\n", scene.name, scene.title,
+             scene.hinge.nodes_per_ring, o.integrator);
+  const auto run = run_level2(scene, opt);
+  const auto& r = run.result;
+  for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
+    fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", i + 1, r.crush_ratio[i],
+               r.wrapped_angle_deg[i], r.inverted_arc_m[i] * 1e3, r.mode[i]);
+  fmt::print("alternation index {:.3f}, energy balance {:.2e}, {} steps, wall {:.2f} s\n",
+             alternation(r.crush_ratio).index, run.raw.energy_balance_error, run.raw.steps,
+             run.raw.wall_time_s);
+  ResultsDir out(o.output);
+  write_run_result(r, scene, out);
+  write_level2_shape_frames(run, scene, out, o.frames ? *o.frames : scene.outputs.frames);
+  write_level2_final_svg(run, scene, out);
+  out.commit();
+  fmt::print("wrote {}/{{summary.json, history.csv, shapes.pvd, frames/, shapes_final.svg, *.svg}}\n",
+             out.target().string());
+}
+
+void add_shapes_command(CLI::App& app) {
+  auto o = std::make_shared<ShapesOptions>();
+  auto* cmd = app.add_subcommand("hinge-shapes", "Level 2 hinge model run with ring shapes (ParaView polylines, SVG)");
+  cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)")->required();
+  cmd->add_option("--integrator", o->integrator, "ida | odeint");
+  cmd->add_option("--rtol", o->rtol, "Relative tolerance (Level 2 raises values below 1e-6 to 1e-3)");
+  cmd->add_option("--frames", o->frames, "Shape frames over the run; default from the scene")->check(CLI::Range(2, 100000));
+  cmd->callback([o] { shapes(*o); });
+}
+
+const cli::CommandRegistration shapes_registration{31, add_shapes_command};
 
 }  // namespace
 }  // namespace ringcrush::compare
