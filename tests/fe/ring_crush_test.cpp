@@ -146,6 +146,28 @@ TEST(RingCrush, ThesisCrushAgainstDeRuntzHodgeAndRedwood) {
               fit.min_ratio_to_deruntz_hodge);
 }
 
+// (f) Mesh convergence of the thesis crush (the suite's version of `ringcrush
+// bench-fe-static`): the thesis mesh refined 2× and 3× in both directions; the loads at
+// δ/d = 0.3 and 0.6 of the two finest differ by less than 2 %, and the coarse thesis mesh
+// (one element through the wall: plastic moment under-integrated) lies below them.
+TEST(RingCrush, MeshConvergence) {
+  const auto ref = reference(thesis_scene());
+  std::vector<std::pair<double, double>> loads;
+  for (int k = 1; k <= 3; ++k) {
+    fe::FeInput in = thesis_input();
+    in.mesh.elements_around *= k;
+    in.mesh.elements_through *= k;
+    in.solver.crush_m = 0.61 * ref.d;
+    const auto r = fe::run_static(in);
+    loads.emplace_back(load_at(r, 0.3 * ref.d), load_at(r, 0.6 * ref.d));
+    std::printf("mesh %dx%d: P(0.3) = %.2f N, P(0.6) = %.2f N\n", in.mesh.elements_around,
+                in.mesh.elements_through, loads.back().first, loads.back().second);
+  }
+  EXPECT_LT(std::abs(loads[2].first - loads[1].first) / loads[2].first, 0.02);
+  EXPECT_LT(std::abs(loads[2].second - loads[1].second) / loads[2].second, 0.02);
+  EXPECT_LT(loads[0].first, loads[2].first);
+}
+
 // (h) Lock-up: crushed until the plate gap is 2t + 0.2 mm, the inner wall touches itself
 // and carries load, with no interpenetration beyond the contact tolerance (1 % of the
 // element depth through the wall).
