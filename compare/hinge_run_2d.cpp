@@ -138,7 +138,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   po.output_interval_s = s.output_interval_s;
   po.settle_time_s = s.settle_time_s;
   if (is_static) {
-    po.end_time_s = in.drive_ramp_s + scene.analysis.crush_m / s.static_speed_m_s;
+    // The cosine ramp of the plate speed covers half its duration in travel.
+    po.end_time_s = 0.5 * in.drive_ramp_s + scene.analysis.crush_m / s.static_speed_m_s;
     po.stop_at_arrest = false;
     po.output_interval_s = po.end_time_s / 400.0;
   } else {
