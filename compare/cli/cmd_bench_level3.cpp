@@ -1,0 +1,66 @@
+// ringcrush bench-level3 [SCENE] — wall time of hinge Level 3 (issue 7, Performance: < 5 ms)
+//
+//   ringcrush bench-level3                                   # Test 30 welded, 27.7 m/s
+//   ringcrush bench-level3 data/scenes/test30_welded.toml --repeat 51 --rtol 1e-8
+//
+// Median (and min/max) wall time of --repeat runs per integrator, no history kept, one core.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "compare/cli/commands.hpp"
+#include "compare/hinge_run_level3.hpp"
+
+namespace ringcrush::compare::cli {
+namespace {
+
+struct BenchLevel3Options {
+  std::string scene = "data/scenes/test30_welded.toml";
+  int repeat = 21;
+  double rtol = 1e-8;
+  double velocity = -1.0;
+};
+
+void run(const BenchLevel3Options& opt) {
+  auto scene = load_scene(opt.scene);
+  if (opt.velocity > 0 && scene.impactor) scene.impactor->velocity_m_s = opt.velocity;
+  fmt::print("bench-level3: {} ({} m/s), rtol {:g}, {} runs each\n", scene.name,
+             scene.impactor ? scene.impactor->velocity_m_s : 0.0, opt.rtol, opt.repeat);
+  fmt::print("{:>8} {:>12} {:>10} {:>10} {:>8} {:>8}\n", "path", "median_ms", "min_ms", "max_ms", "steps", "ring1");
+  for (auto integ : {HingeIntegrator::Ida, HingeIntegrator::Odeint}) {
+    HingeRunOptions o;
+    o.level = "3";
+    o.integrator = integ;
+    o.relative_tolerance = opt.rtol;
+    o.absolute_tolerance = opt.rtol * 1e-2;
+    Level3RunOptions extra;
+    extra.record_history = false;
+    std::vector<double> ms;
+    RunResult last;
+    for (int k = 0; k < opt.repeat; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      last = run_hinge_level3(scene, o, extra);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    fmt::print("{:>8} {:>12.3f} {:>10.3f} {:>10.3f} {:>8} {:>8}\n", integ == HingeIntegrator::Ida ? "ida" : "odeint",
+               ms[ms.size() / 2], ms.front(), ms.back(), last.statistics.steps, last.mode.empty() ? "" : last.mode[0]);
+  }
+}
+
+void add_command(CLI::App& app) {
+  auto o = std::make_shared<BenchLevel3Options>();
+  auto* cmd = app.add_subcommand("bench-level3", "Wall time of hinge Level 3 (median of repeated runs)");
+  cmd->add_option("scene", o->scene, "Dynamic scene (default: Test 30 welded)")->check(CLI::ExistingFile);
+  cmd->add_option("--repeat", o->repeat, "Runs per integrator (median)")->check(CLI::Range(1, 100000));
+  cmd->add_option("--rtol", o->rtol, "Relative tolerance (atol = rtol/100)")->check(CLI::Range(1e-12, 1e-2));
+  cmd->add_option("--velocity", o->velocity, "Override the impact speed (m/s)");
+  cmd->callback([o] { run(*o); });
+}
+
+const CommandRegistration registration{62, add_command};
+
+}  // namespace
+}  // namespace ringcrush::compare::cli

@@ -1,0 +1,590 @@
+#include "level3_mechanism.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace ringcrush::hinge {
+
+using std::numbers::pi;
+
+void Level3Ring::validate() const {
+  if (!(outer_diameter_m > 0) || !(wall_thickness_m > 0) || !(wall_thickness_m < 0.25 * outer_diameter_m))
+    throw std::invalid_argument("Level3Ring: need D > 0 and 0 < t < D/4");
+  if (!(plastic_moment_nm > 0)) throw std::invalid_argument("Level3Ring: M0 must be > 0");
+  if (!(hardening_k >= 0)) throw std::invalid_argument("Level3Ring: hardening k must be >= 0");
+}
+
+void Level3Input::validate() const {
+  ring.validate();
+  if (rings < 1) throw std::invalid_argument("Level3Input: rings must be >= 1");
+  if (!(impactor_mass_kg > 0) || !(impactor_velocity_m_s > 0))
+    throw std::invalid_argument("Level3Input: impactor mass and velocity must be > 0");
+  if (theta_f >= 0 && !(theta_f > 0.5 * pi && theta_f < pi))
+    throw std::invalid_argument("Level3Input: theta_F must lie in (90°, 180°)");
+}
+
+std::string to_string(Level3Mode m) {
+  switch (m) {
+    case Level3Mode::Uniform: return "uniform";
+    case Level3Mode::Wrap: return "wrap";
+    case Level3Mode::Bottom: return "bottom";
+  }
+  return "?";
+}
+
+namespace {
+
+// Redwood-hardened flattening law in terms of the quadrant angle: P0 (1 + kφ)/cos φ.
+double flat_load(double p0, double k, double phi) { return p0 * (1.0 + k * phi) / std::cos(phi); }
+double flat_load_dphi(double p0, double k, double phi) {
+  const double c = std::cos(phi);
+  return p0 * (k / c + (1.0 + k * phi) * std::sin(phi) / (c * c));
+}
+
+}  // namespace
+
+double level3_uniform_load(const Level3Ring& r, double crush) {
+  const double phi = std::asin(std::clamp(crush / r.mean_diameter(), 0.0, 1.0));
+  return flat_load(r.collapse_load(), r.hardening_k, phi);
+}
+
+double level3_uniform_energy(const Level3Ring& r, double crush) {
+  const double phi = std::asin(std::clamp(crush / r.mean_diameter(), 0.0, 1.0));
+  return 8.0 * r.plastic_moment_nm * (phi + 0.5 * r.hardening_k * phi * phi);
+}
+
+// ---------------------------------------------------------------------------------------
+// Wrap mechanism geometry (ring frame: centre at the origin, C = (R, 0), B on x = 0).
+
+namespace {
+
+struct WrapState {
+  double fx, fy;   // F relative to B
+  double alpha;    // angle of the chord F→C
+  double yb;       // y of B
+};
+
+WrapState wrap_state(double R, double L, double S, double kappa) {
+  WrapState w;
+  const double ks = kappa * S;
+  if (std::abs(kappa) * S < 1e-8) {
+    w.fx = S;
+    w.fy = 0.5 * kappa * S * S;
+  } else {
+    w.fx = std::sin(ks) / kappa;
+    w.fy = (1.0 - std::cos(ks)) / kappa;
+  }
+  const double ca = std::clamp((R - w.fx) / L, -1.0, 1.0);
+  w.alpha = std::acos(ca);
+  w.yb = -L * std::sin(w.alpha) - w.fy;
+  return w;
+}
+
+}  // namespace
+
+WrapMechanism level3_wrap_mechanism(const Level3Ring& r, double theta_f, int samples) {
+  r.validate();
+  if (!(theta_f > 0.5 * pi && theta_f < pi)) throw std::invalid_argument("wrap: theta_F in (90°, 180°)");
+  const double R = r.mean_radius(), t = r.wall_thickness_m, M0 = r.plastic_moment_nm;
+  const double S = R * (pi - theta_f);                     // arc F–B
+  const double L = 2.0 * R * std::sin(0.5 * (theta_f - 0.5 * pi));  // chord C–F
+  const double k0 = 1.0 / R, k1 = -1.0 / (R + t);
+  WrapMechanism w;
+  w.theta_f = theta_f;
+  const WrapState s0 = wrap_state(R, L, S, k0);
+  double D = 0.0;
+  WrapState prev = s0;
+  double kprev = k0;
+  for (int j = 0; j <= samples; ++j) {
+    const double kappa = k0 + (k1 - k0) * j / samples;
+    const WrapState s = wrap_state(R, L, S, kappa);
+    if (j > 0) {
+      const double da = s.alpha - prev.alpha, dk = kappa - kprev;
+      D += M0 * (2.0 * std::abs(da) + 2.0 * std::abs(dk * S - da) + 2.0 * S * std::abs(dk));
+    }
+    w.curvature.push_back(kappa);
+    w.crush.push_back(s.yb - s0.yb);
+    w.dissipation.push_back(D);
+    w.chord_angle.push_back(s.alpha);
+    prev = s;
+    kprev = kappa;
+  }
+  // The mechanism ends where B stops rising (its geometric limit) if before full inversion.
+  for (std::size_t j = 1; j < w.crush.size(); ++j)
+    if (!(w.crush[j] > w.crush[j - 1])) {
+      if (j < 3) throw std::runtime_error(fmt::format("wrap mechanism: no travel at theta_F = {}", theta_f));
+      w.curvature.resize(j);
+      w.crush.resize(j);
+      w.dissipation.resize(j);
+      w.chord_angle.resize(j);
+      break;
+    }
+  const std::size_t n = w.crush.size();
+  w.load.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t a = j == 0 ? 0 : j - 1, b = j + 1 == n ? j : j + 1;
+    w.load[j] = (w.dissipation[b] - w.dissipation[a]) / (w.crush[b] - w.crush[a]);
+  }
+  return w;
+}
+
+namespace {
+std::size_t segment(const std::vector<double>& x, double q) {
+  const auto it = std::upper_bound(x.begin(), x.end(), q);
+  std::size_t j = it == x.begin() ? 0 : static_cast<std::size_t>(it - x.begin()) - 1;
+  return std::min(j, x.size() - 2);
+}
+}  // namespace
+
+// Cubic Hermite interpolation of the load in δ (C¹, so the integrators see no kinks at the
+// table nodes), node slopes by finite differences; the work is its exact integral.
+namespace {
+struct Hermite {
+  std::size_t j;
+  double h, tau, p0, p1, m0, m1;
+};
+Hermite hermite(const WrapMechanism& w, double q) {
+  const std::size_t n = w.crush.size();
+  Hermite c;
+  c.j = segment(w.crush, q);
+  const std::size_t j = c.j;
+  c.h = w.crush[j + 1] - w.crush[j];
+  c.tau = std::clamp((q - w.crush[j]) / c.h, 0.0, 1.0);
+  auto slope = [&](std::size_t i) {
+    const std::size_t a = i == 0 ? 0 : i - 1, b = i + 1 >= n ? n - 1 : i + 1;
+    return (w.load[b] - w.load[a]) / (w.crush[b] - w.crush[a]);
+  };
+  c.p0 = w.load[j];
+  c.p1 = w.load[j + 1];
+  c.m0 = slope(j) * c.h;
+  c.m1 = slope(j + 1) * c.h;
+  return c;
+}
+double hermite_integral(const Hermite& c, double t) {
+  const double t2 = t * t, t3 = t2 * t, t4 = t3 * t;
+  return c.h * (c.p0 * (t - t3 + 0.5 * t4) + c.m0 * (0.5 * t2 - 2.0 * t3 / 3.0 + 0.25 * t4) +
+                c.p1 * (t3 - 0.5 * t4) + c.m1 * (-t3 / 3.0 + 0.25 * t4));
+}
+}  // namespace
+
+double WrapMechanism::load_at(double q) const {
+  const Hermite c = hermite(*this, q);
+  const double t = c.tau, t2 = t * t, t3 = t2 * t;
+  return c.p0 * (2 * t3 - 3 * t2 + 1) + c.m0 * (t3 - 2 * t2 + t) + c.p1 * (-2 * t3 + 3 * t2) + c.m1 * (t3 - t2);
+}
+double WrapMechanism::slope_at(double q) const {
+  const Hermite c = hermite(*this, q);
+  const double t = c.tau, t2 = t * t;
+  return (c.p0 * (6 * t2 - 6 * t) + c.m0 * (3 * t2 - 4 * t + 1) + c.p1 * (-6 * t2 + 6 * t) + c.m1 * (3 * t2 - 2 * t)) / c.h;
+}
+double WrapMechanism::energy_at(double q) const {
+  const Hermite c = hermite(*this, q);
+  double e = 0.0;
+  for (std::size_t i = 0; i < c.j; ++i) e += hermite_integral(hermite(*this, crush[i]), 1.0);
+  return e + hermite_integral(c, c.tau);
+}
+
+double level3_optimal_theta_f(const Level3Ring& r) {
+  auto onset = [&](double th) {
+    const auto w = level3_wrap_mechanism(r, th, 40);
+    return w.load.front();
+  };
+  double a = 100.0 * pi / 180.0, b = 170.0 * pi / 180.0;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = onset(c), fd = onset(d);
+  for (int it = 0; it < 40; ++it) {
+    if (fc < fd) { b = d; d = c; fd = fc; c = b - g * (b - a); fc = onset(c); }
+    else { a = c; c = d; fc = fd; d = a + g * (b - a); fd = onset(d); }
+  }
+  return 0.5 * (a + b);
+}
+
+// ---------------------------------------------------------------------------------------
+// The chain.
+
+namespace {
+
+constexpr int kU = 0, kW = 1, kL = 2;
+
+class Level3Chain final : public HybridSystem {
+ public:
+  Level3Chain(const Level3Input& in, WrapMechanism wrap)
+      : in_(in), r_(in.ring), w_(std::move(wrap)), n_(in.rings), m_(3 * in.rings) {
+    p0_ = r_.collapse_load();
+    d_ = r_.mean_diameter();
+    R_ = r_.mean_radius();
+    active_.assign(m_, false);
+    locked_.assign(m_, false);
+    first_.assign(m_, -1.0);
+    psi0_.assign(n_, 0.0);
+    wrap_started_.assign(n_, false);
+    reinforced_.assign(n_, false);
+  }
+
+  std::size_t size() const override { return 4 + m_; }
+  std::size_t root_count() const override { return m_ + 2; }
+
+  // --- mechanism laws -------------------------------------------------------------
+  double uniform_phi(const double* y, int i) const {
+    return std::asin(std::clamp(y[4 + 3 * i + kU] / d_, 0.0, 1.0));
+  }
+  double bottom_psi(const double* y, int i) const {
+    return std::asin(std::clamp(std::sin(psi0_[i]) + y[4 + 3 * i + kL] / R_, 0.0, 1.0));
+  }
+  double load(const double* y, int j) const {
+    const int i = j / 3;
+    switch (j % 3) {
+      case kU: return flat_load(p0_, r_.hardening_k, uniform_phi(y, i));
+      case kW: return w_.load_at(y[4 + j]);
+      default: return flat_load(p0_, r_.hardening_k, bottom_psi(y, i));
+    }
+  }
+  double slope(const double* y, int j) const {
+    const int i = j / 3;
+    switch (j % 3) {
+      case kU: {
+        const double phi = uniform_phi(y, i);
+        return flat_load_dphi(p0_, r_.hardening_k, phi) / (d_ * std::cos(phi));
+      }
+      case kW: return w_.slope_at(y[4 + j]);
+      default: {
+        const double psi = bottom_psi(y, i);
+        return flat_load_dphi(p0_, r_.hardening_k, psi) / (R_ * std::cos(psi));
+      }
+    }
+  }
+  double energy(const double* y, int j) const {
+    const int i = j / 3;
+    const double M0 = r_.plastic_moment_nm, k = r_.hardening_k;
+    switch (j % 3) {
+      case kU: return level3_uniform_energy(r_, y[4 + j]);
+      case kW: return w_.energy_at(y[4 + j]);
+      default: {
+        const double a = psi0_[i], b = bottom_psi(y, i);
+        return 4.0 * M0 * ((b - a) + 0.5 * k * (b * b - a * a));
+      }
+    }
+  }
+  double ring_crush(const double* y, int i) const {
+    return y[4 + 3 * i + kU] + y[4 + 3 * i + kW] + y[4 + 3 * i + kL];
+  }
+  // Remaining travel of mechanism j: its own geometric limit and the ring's lock-up d − t.
+  double margin(const double* y, int j) const {
+    const int i = j / 3;
+    const double ring_left = (d_ - r_.wall_thickness_m) - ring_crush(y, i);
+    double own;
+    switch (j % 3) {
+      case kU: own = ring_left; break;
+      case kW: own = w_.capacity() - y[4 + j]; break;
+      default: own = (R_ - r_.wall_thickness_m) - R_ * std::sin(bottom_psi(y, i)); break;
+    }
+    return std::min(own, ring_left);
+  }
+  bool available(int j) const {
+    const int i = j / 3;
+    if (locked_[j]) return false;
+    switch (j % 3) {
+      case kU: return !reinforced_[i];
+      case kW: return !in_.plates && i + 1 < n_ && !reinforced_[i] && !wrap_started_[i + 1];
+      default: return reinforced_[i];
+    }
+  }
+
+  // --- equations ---------------------------------------------------------------------
+  void rhs(double, const double* y, double* f) override {
+    std::fill(f, f + size(), 0.0);
+    const double v = y[1], F = y[2];
+    f[0] = v;
+    f[1] = -F / in_.impactor_mass_kg;
+    f[3] = F * v;
+    if (soft_ >= 0) {
+      f[4 + soft_] = v;
+      f[2] = slope(y, soft_) * v;
+      return;
+    }
+    double inv = 0.0;
+    for (int j = 0; j < m_; ++j)
+      if (active_[j]) inv += 1.0 / std::max(slope(y, j), 1e-12 * p0_ / d_);
+    if (inv <= 0.0) return;
+    const double Fdot = v / inv;
+    f[2] = Fdot;
+    for (int j = 0; j < m_; ++j)
+      if (active_[j]) f[4 + j] = Fdot / std::max(slope(y, j), 1e-12 * p0_ / d_);
+  }
+  void residual(double t, const double* y, const double* yp, double* r) override {
+    rhs(t, y, r);
+    for (std::size_t k = 0; k < size(); ++k) r[k] = yp[k] - r[k];
+  }
+
+  void event_roots(double, const double* y, double* g) override {
+    for (int j = 0; j < m_; ++j) {
+      if (active_[j]) g[j] = margin(y, j) / d_;
+      else if (available(j)) g[j] = (y[2] - load(y, j)) / p0_;
+      else g[j] = 1.0;
+    }
+    g[m_] = soft_ >= 0 ? slope(y, soft_) * d_ / p0_ : 1.0;
+    g[m_ + 1] = y[1] / in_.impactor_velocity_m_s;
+  }
+
+  int root_departure(std::size_t i, int fired) const override {
+    if (static_cast<int>(i) < m_ && fired > 0) return -1;  // activated: now a margin (falls)
+    return fired;
+  }
+
+  EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
+    if (fired[m_ + 1] < 0 || y[1] <= 0.0) {
+      events_.push_back({t, "impactor_arrested", -1, fmt::format("F = {:.1f} N", y[2])});
+      arrested_ = true;
+      return EventAction::Stop;
+    }
+    for (int j = 0; j < m_; ++j)
+      if (active_[j] && fired[j] != 0 && margin(y.data(), j) <= 1e-9 * d_) {
+        locked_[j] = true;
+        events_.push_back({t, "ring_locked", j / 3,
+                           fmt::format("{} mechanism at its limit", to_string(static_cast<Level3Mode>(j % 3)))});
+      }
+    return select(t, y) ? EventAction::Continue : EventAction::Stop;
+  }
+
+  // Mode selection: the admissible mechanisms of least load flow (THEORY §4.5).
+  // Returns false when every mechanism is exhausted (the chain is locked).
+  bool select(double t, std::vector<double>& y) {
+    for (int pass = 0; pass < 4; ++pass) {
+      std::fill(active_.begin(), active_.end(), false);
+      soft_ = -1;
+      double pmin = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < m_; ++j) {
+        if (available(j) && margin(y.data(), j) <= 1e-9 * d_) locked_[j] = true;
+        if (available(j)) pmin = std::min(pmin, load(y.data(), j));
+      }
+      if (!std::isfinite(pmin)) {
+        lock_loss_ += 0.5 * in_.impactor_mass_kg * y[1] * y[1];
+        events_.push_back({t, "chain_locked", -1, "every mechanism at its limit: impactor stopped"});
+        y[1] = 0.0;
+        return false;
+      }
+      if (y[2] < pmin) y[2] = pmin;
+      const double F = y[2];
+      for (int j = 0; j < m_; ++j)
+        if (available(j) && load(y.data(), j) <= F * (1.0 + 1e-7)) active_[j] = true;
+      for (int j = 0; j < m_ && soft_ < 0; ++j)  // softening: the one nearest the impactor
+        if (active_[j] && slope(y.data(), j) < 0.0) soft_ = j;
+      if (soft_ >= 0) {
+        std::fill(active_.begin(), active_.end(), false);
+        active_[soft_] = true;
+      }
+      bool changed = false;
+      for (int j = 0; j < m_; ++j) {
+        if (!active_[j] || first_[j] >= 0) continue;
+        first_[j] = t;
+        const int i = j / 3;
+        events_.push_back({t, "hinge_formed", i,
+                           fmt::format("{} mechanism at F = {:.1f} N", to_string(static_cast<Level3Mode>(j % 3)), F)});
+        if (j % 3 == kW && !wrap_started_[i]) {
+          wrap_started_[i] = true;
+          reinforced_[i + 1] = true;
+          psi0_[i + 1] = uniform_phi(y.data(), i + 1);  // the bottom half's current angle
+          double pu = load(y.data(), 3 * i + kU);
+          events_.push_back({t, "mode_selected", i,
+                             fmt::format("wrap over ring {} (wrap load {:.1f} N <= uniform {:.1f} N)", i + 2,
+                                         load(y.data(), j), pu)});
+          changed = true;
+        }
+      }
+      if (!changed) break;
+    }
+    return true;
+  }
+
+  bool finished(double, const double* y) override { return y[1] <= 0.0; }
+
+  // --- results -----------------------------------------------------------------------
+  void record(double t, const std::vector<double>& y, Level3History& h) const {
+    h.time_s.push_back(t);
+    h.impactor_displacement_m.push_back(y[0]);
+    h.impactor_velocity_m_s.push_back(y[1]);
+    h.force_n.push_back(y[2]);
+    h.ring_crush_m.resize(n_);
+    for (int i = 0; i < n_; ++i) h.ring_crush_m[i].push_back(ring_crush(y.data(), i));
+    h.kinetic_j.push_back(0.5 * in_.impactor_mass_kg * y[1] * y[1]);
+    h.plastic_j.push_back(y[3]);
+  }
+
+  void finish(const std::vector<double>& y, Level3Result& res) const {
+    const double* s = y.data();
+    double total = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      Level3RingResult rr;
+      rr.uniform_crush_m = s[4 + 3 * i + kU];
+      rr.wrap_crush_m = s[4 + 3 * i + kW];
+      rr.bottom_crush_m = s[4 + 3 * i + kL];
+      rr.crush_m = ring_crush(s, i);
+      rr.uniform_angle = uniform_phi(s, i);
+      rr.bottom_angle = reinforced_[i] ? bottom_psi(s, i) : 0.0;
+      rr.wrap_started = wrap_started_[i];
+      rr.reinforced = reinforced_[i];
+      const double eu = energy(s, 3 * i + kU), ew = energy(s, 3 * i + kW), el = reinforced_[i] ? energy(s, 3 * i + kL) : 0.0;
+      rr.plastic_work_j = eu + ew + el;
+      total += rr.plastic_work_j;
+      rr.mode = wrap_started_[i] ? Level3Mode::Wrap : reinforced_[i] ? Level3Mode::Bottom : Level3Mode::Uniform;
+      // Hinge map (material angles from the top apex).
+      const double fu = first_[3 * i + kU], fw = first_[3 * i + kW], fl = first_[3 * i + kL];
+      const double phi = rr.uniform_angle;
+      if (fu >= 0) {
+        rr.hinges.push_back({"A", 0.0, fu, 2.0 * phi});
+        rr.hinges.push_back({"C", 90.0, fu, 2.0 * phi});
+        rr.hinges.push_back({"B", 180.0, fu, 2.0 * phi});
+      }
+      if (fw >= 0) {
+        const double q = s[4 + 3 * i + kW];
+        const std::size_t j = segment(w_.crush, q);
+        const double kappa = w_.curvature[j], alpha = w_.chord_angle[j];
+        const double S = R_ * (pi - w_.theta_f);
+        rr.wrap_curvature = kappa;
+        rr.hinges.push_back({"C", 90.0, fw, std::abs(alpha - w_.chord_angle.front())});
+        rr.hinges.push_back({"F", w_.theta_f * 180.0 / pi, fw,
+                             std::abs((kappa - w_.curvature.front()) * S - (alpha - w_.chord_angle.front()))});
+        rr.hinges.push_back({"B", 180.0, fw, S * std::abs(kappa - w_.curvature.front())});
+      }
+      if (fl >= 0) {
+        rr.hinges.push_back({"E", in_.theta_e * 180.0 / pi, -1.0, 0.0});
+        rr.hinges.push_back({"C", 90.0, fl, rr.bottom_angle - psi0_[i]});
+        rr.hinges.push_back({"B", 180.0, fl, rr.bottom_angle - psi0_[i]});
+      }
+      res.rings.push_back(rr);
+    }
+    res.plastic_work_closed_form_j = total;
+    res.lock_loss_j = lock_loss_;
+    res.events = events_;
+  }
+
+  double psi0(int i) const { return psi0_[i]; }
+
+ private:
+  Level3Input in_;
+  Level3Ring r_;
+  WrapMechanism w_;
+  int n_, m_;
+  double p0_ = 0, d_ = 0, R_ = 0;
+  std::vector<bool> active_, locked_, wrap_started_, reinforced_;
+  std::vector<double> first_, psi0_;
+  int soft_ = -1;
+  double lock_loss_ = 0.0;
+  bool arrested_ = false;
+  std::vector<Level3Event> events_;
+};
+
+}  // namespace
+
+double Level3Result::energy_balance_error() const {
+  double e = 0.0;
+  for (std::size_t k = 0; k < history.time_s.size(); ++k) {
+    const double lock = k + 1 == history.time_s.size() ? lock_loss_j : 0.0;
+    e = std::max(e, std::abs(history.kinetic_j[k] + history.plastic_j[k] + lock - initial_kinetic_energy_j) /
+                        initial_kinetic_energy_j);
+  }
+  return e;
+}
+
+Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options, bool record_history) {
+  in.validate();
+  const double theta_f = in.theta_f >= 0 ? in.theta_f : level3_optimal_theta_f(in.ring);
+  Level3Chain chain(in, level3_wrap_mechanism(in.ring, theta_f));
+  Level3Result res;
+  res.theta_f = theta_f;
+  res.initial_kinetic_energy_j = 0.5 * in.impactor_mass_kg * in.impactor_velocity_m_s * in.impactor_velocity_m_s;
+  std::vector<double> y(chain.size(), 0.0);
+  y[1] = in.impactor_velocity_m_s;
+  bool running = chain.select(0.0, y);
+  std::vector<double> last;
+  double t_last = 0.0;
+  if (running) {
+    res.outcome = run_hybrid(chain, 0.0, y, options, [&](double t, const std::vector<double>& s) {
+      if (record_history || res.history.time_s.empty()) chain.record(t, s, res.history);
+      last = s;
+      t_last = t;
+    });
+  }
+  if (!running) chain.record(0.0, y, res.history);
+  else if (!record_history && !last.empty()) chain.record(t_last, last, res.history);
+  chain.finish(y, res);
+  return res;
+}
+
+// ---------------------------------------------------------------------------------------
+// Shapes (for the wrap measures and the polylines).
+
+Level3Shape level3_ring_shape(const Level3Ring& r, const WrapMechanism& w, const Level3RingResult& s,
+                              double top_y, int n) {
+  const double R = r.mean_radius();
+  const double phi = s.uniform_angle;
+  Level3Shape sh;
+  auto rot = [](double a, double x, double y) { return std::array<double, 2>{x * std::cos(a) - y * std::sin(a), x * std::sin(a) + y * std::cos(a)}; };
+  // Upper quadrant: DeRuntz–Hodge, rotated by φ about C, flattened above its tangent point.
+  const double xc = R - R * std::cos(phi), ytop = R - R * std::sin(phi);
+  std::vector<std::array<double, 2>> pts;
+  std::vector<double> th;
+  for (int k = 0; k <= n; ++k) {
+    const double t = 0.5 * pi * k / n;
+    if (t < phi) {
+      pts.push_back({xc * t / std::max(phi, 1e-12), ytop});
+    } else {
+      const auto q = rot(phi, R * std::sin(t) - R, R * std::cos(t));
+      pts.push_back({R + q[0], q[1]});
+    }
+    th.push_back(t);
+  }
+  double yb;
+  if (s.wrap_started) {
+    const double tf = w.theta_f, S = R * (pi - tf);
+    const double L = 2.0 * R * std::sin(0.5 * (tf - 0.5 * pi));
+    const WrapState st = wrap_state(R, L, S, s.wrap_curvature);
+    const WrapState s0 = wrap_state(R, L, S, 1.0 / R);
+    const double da = st.alpha - s0.alpha;
+    for (int k = 1; k <= n; ++k) {  // arc C–F turned rigidly about C
+      const double t = 0.5 * pi + (tf - 0.5 * pi) * k / n;
+      const auto q = rot(da, R * std::sin(t) - R, R * std::cos(t));
+      pts.push_back({R + q[0], q[1]});
+      th.push_back(t);
+    }
+    yb = st.yb;
+    const double kap = s.wrap_curvature;
+    for (int k = n - 1; k >= 0; --k) {  // arc F–B of curvature κ, B on the axis
+      const double u = S * k / n;
+      double x, y;
+      if (std::abs(kap) * u < 1e-8) { x = u; y = 0.5 * kap * u * u; }
+      else { x = std::sin(kap * u) / kap; y = (1.0 - std::cos(kap * u)) / kap; }
+      pts.push_back({x, yb + y});
+      th.push_back(pi - u / R);
+    }
+  } else {
+    const double a = s.reinforced ? s.bottom_angle : phi;
+    const double xcb = R - R * std::cos(a);
+    yb = -(R - R * std::sin(a));
+    for (int k = 1; k <= 2 * n; ++k) {
+      const double t = 0.5 * pi + 0.5 * pi * k / (2 * n);
+      const double m = pi - t;  // angle from B
+      if (m < a) {
+        pts.push_back({xcb * m / std::max(a, 1e-12), yb});
+      } else {
+        const auto q = rot(-a, R * std::sin(t) - R, R * std::cos(t));
+        pts.push_back({R + q[0], q[1]});
+      }
+      th.push_back(t);
+    }
+  }
+  const double off = top_y - ytop;
+  for (auto& p : pts) p[1] += off;
+  sh.points = std::move(pts);
+  sh.theta = std::move(th);
+  sh.bottom_y = yb + off;
+  return sh;
+}
+
+}  // namespace ringcrush::hinge

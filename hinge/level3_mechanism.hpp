@@ -1,0 +1,142 @@
+// Level 3 (THEORY §4.5): few-hinge rigid-plastic mechanisms of the thesis (§4.2.3) and a
+// chain of them with mode selection by the dissipation rate of the competing mechanisms.
+//
+// Mechanisms of one ring (half ring, x = 0 symmetry, material angle θ from the top apex A):
+//   Uniform  DeRuntz–Hodge: rigid quadrants turning by φ about the side hinges C (θ = 90°),
+//            travelling flattening hinges at A and B; δ = d sin φ, P = P0 (1 + kφ)/cos φ.
+//   Wrap     the wrapping ring's lower arc: rigid arc C–F turning about C (hinges C and F,
+//            F at θ_F), and the arc F–B yielding along its length (the thesis's "spread
+//            yielding along B–C") from its curvature 1/R to −1/(R + t), i.e. inverted over
+//            the round top of the next ring. One degree of freedom (the arc curvature κ),
+//            closure x_B = 0; the load is dD/dδ from the segment geometry (virtual work),
+//            tabulated numerically. Rate-independent, no hardening.
+//   Bottom   the ring underneath a wrapping ring (hinges E, C, B, none at A): the cap A–E
+//            is held by the wrapped ring, the lower quadrant turns about C and flattens at
+//            B; δ = R (sin ψ − sin ψ0), P = P0 (1 + kψ)/cos ψ from the current ψ0.
+//
+// The chain (simulate_level3): rings in series between the impactor (mass M) and a fixed
+// target, ring inertia neglected (a massless, quasi-static rigid-plastic chain, so the
+// force F is common to every ring). The mechanisms whose load equals F flow, sharing the
+// impactor velocity so that their loads stay equal (hardening) or, if one softens, that
+// one alone; mode selection = the admissible mechanism of least load (dissipation rate per
+// unit shortening) at each event. Events: a mechanism reaches F (yield onset), a softening
+// mechanism turns hardening, a mechanism reaches its geometric limit (lock), impactor at
+// rest. Hinge positions: A, C, B fixed by symmetry; θ_F either given or chosen to minimise
+// the wrap onset load (upper-bound theorem: among fixed-hinge mechanisms the one of least
+// load); θ_E is the edge of the held cap and does not rotate in this mechanism set.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "hybrid_system.hpp"
+
+namespace ringcrush::hinge {
+
+struct Level3Ring {
+  double outer_diameter_m = 0.0;
+  double wall_thickness_m = 0.0;
+  double plastic_moment_nm = 0.0;  // M0 of the whole width
+  double hardening_k = 0.0;        // Redwood's E′/(3σ0α); 0: DeRuntz–Hodge
+  double mean_diameter() const { return outer_diameter_m - wall_thickness_m; }
+  double mean_radius() const { return 0.5 * mean_diameter(); }
+  double collapse_load() const { return 8.0 * plastic_moment_nm / mean_diameter(); }  // P0
+  void validate() const;
+};
+
+enum class Level3Mode { Uniform, Wrap, Bottom };
+std::string to_string(Level3Mode);
+
+// Uniform (DeRuntz–Hodge) mechanism in closed form: load, slope dP/dδ and work at crush δ.
+double level3_uniform_load(const Level3Ring& r, double crush);
+double level3_uniform_energy(const Level3Ring& r, double crush);
+
+// The wrap mechanism of the lower arc, tabulated over κ ∈ [1/R, −1/(R+t)].
+struct WrapMechanism {
+  double theta_f = 0.0;               // F (rad from the top apex)
+  std::vector<double> curvature;      // κ_j
+  std::vector<double> crush;          // δ_j (rise of B relative to C), increasing
+  std::vector<double> dissipation;    // D_j = ∫ M0 (2|dα| + 2|d(κS) − dα| + 2S|dκ|)
+  std::vector<double> load;           // dD/dδ at the nodes
+  std::vector<double> chord_angle;    // α_j of the rigid chord F→C
+  double capacity() const { return crush.back(); }
+  // Piecewise-linear load in δ and its exact integral (so the work is consistent).
+  double load_at(double q) const;
+  double slope_at(double q) const;
+  double energy_at(double q) const;
+};
+WrapMechanism level3_wrap_mechanism(const Level3Ring& r, double theta_f, int samples = 120);
+// θ_F ∈ [100°, 170°] minimising the wrap onset load (golden section).
+double level3_optimal_theta_f(const Level3Ring& r);
+
+struct Level3Input {
+  int rings = 6;
+  Level3Ring ring;
+  bool plates = false;              // joints are plates: no ring can wrap its neighbour
+  double impactor_mass_kg = 0.0;
+  double impactor_velocity_m_s = 0.0;
+  double theta_f = -1.0;            // < 0: level3_optimal_theta_f
+  double theta_e = 0.7853981633974483;  // edge of the held cap (reported only)
+  void validate() const;
+};
+
+struct Level3Hinge {
+  std::string name;        // "A", "C", "B", "F", "E", "B-F arc"
+  double angle_deg;        // material angle from the top apex
+  double first_yield_s;    // −1: never
+  double rotation_rad;     // accumulated plastic rotation (arc: curvature change × length)
+};
+
+struct Level3RingResult {
+  double crush_m = 0.0;              // δ_i (approach of the loading points)
+  double uniform_crush_m = 0.0, wrap_crush_m = 0.0, bottom_crush_m = 0.0;
+  double uniform_angle = 0.0;        // φ
+  double wrap_curvature = 0.0;       // κ of the arc F–B (1/R undeformed)
+  double bottom_angle = 0.0;         // ψ
+  Level3Mode mode = Level3Mode::Uniform;  // Wrap if its wrap was selected, Bottom if under a wrap
+  bool wrap_started = false;
+  bool reinforced = false;           // under a wrapping ring
+  std::vector<Level3Hinge> hinges;
+  double plastic_work_j = 0.0;
+};
+
+struct Level3History {
+  std::vector<double> time_s, impactor_displacement_m, impactor_velocity_m_s, force_n;
+  std::vector<std::vector<double>> ring_crush_m;  // [ring][sample]
+  std::vector<double> kinetic_j, plastic_j;
+};
+
+struct Level3Event {
+  double time_s;
+  std::string kind;   // "hinge_formed", "mode_selected", "ring_locked", "impactor_arrested"
+  int ring;
+  std::string detail;
+};
+
+struct Level3Result {
+  Level3History history;
+  std::vector<Level3RingResult> rings;
+  std::vector<Level3Event> events;
+  HybridOutcome outcome;
+  double theta_f = 0.0;
+  double initial_kinetic_energy_j = 0.0;
+  double plastic_work_closed_form_j = 0.0;  // Σ mechanism works from the final state
+  double lock_loss_j = 0.0;                 // kinetic energy lost if the whole chain locks
+  double energy_balance_error() const;      // max |KE + Dp + lock − KE0| / KE0
+};
+
+Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options,
+                             bool record_history = true);
+
+// Mean line of ring i's half (θ ∈ [0, π], 2 + 4·n points) in chain coordinates: ring top
+// at y = top_y; the state of a Level3RingResult. Points as {x, y}; angles in `theta`.
+struct Level3Shape {
+  std::vector<std::array<double, 2>> points;
+  std::vector<double> theta;
+  double bottom_y = 0.0;  // y of B
+};
+Level3Shape level3_ring_shape(const Level3Ring& r, const WrapMechanism& w,
+                              const Level3RingResult& s, double top_y, int n = 24);
+
+}  // namespace ringcrush::hinge
