@@ -197,10 +197,10 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     WrapMeasure w;
     w.inverted_arc_m = inverted_arc_length(final_shapes[ring]);
     if (below) w.wrapped_angle_deg = wrapped_angle_deg(arrest_shapes[ring], arrest_shapes[ring + 1], 1.1 * t);
-    // Decided on S alone (THEORY §4.7); W is reported as supporting evidence. In free
-    // chains the wrapped arc of ring i bridges over the apex of ring i+1 (Test 30: a 4.5 mm
-    // gap on the axis, contact at 37–45°), where W, contiguous from the apex, reads 0.
-    w.wrap_around = w.inverted_arc_m > thresholds.min_inverted_arc_fraction * pi * R;
+    // Decided on S (compare/measures wrap_flag); in free chains the wrapped arc of ring i
+    // bridges over the apex of ring i+1 (Test 30: a 4.5 mm gap on the axis, contact at
+    // 37–45°), where W, contiguous from the apex, reads 0.
+    w.wrap_around = wrap_flag(w.inverted_arc_m, R, thresholds);
     const double c = crush_ratio(final_shapes[ring], D);
     r.crush_ratio.push_back(c);
     r.wrap_around.push_back(w.wrap_around);

@@ -115,9 +115,12 @@ WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double m
   WrapMeasure m;
   m.inverted_arc_m = inverted_arc_length(ring);
   if (lower) m.wrapped_angle_deg = wrapped_angle_deg(ring, *lower, 1.1 * wall_thickness);
-  m.wrap_around = m.wrapped_angle_deg > th.min_wrapped_angle_deg &&
-                  m.inverted_arc_m > th.min_inverted_arc_fraction * pi * mean_radius;
+  m.wrap_around = wrap_flag(m.inverted_arc_m, mean_radius, th);
   return m;
+}
+
+bool wrap_flag(double inverted_arc_m, double mean_radius, const WrapThresholds& th) {
+  return inverted_arc_m > th.min_inverted_arc_fraction * pi * mean_radius;
 }
 
 Alternation alternation(const std::vector<double>& c, double tol) {

@@ -80,13 +80,18 @@ void run(const HingeOptions& o) {
     for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
       fmt::print("{:5d} {:10.3f} {:8.4f}  {}\n", i + 1, r.crush_ratio[i] * scene.rings.outer_diameter_m * 1e3,
                  r.crush_ratio[i], i < r.mode.size() ? r.mode[i] : "");
-    const auto& ta = summary["arrest_time_s"];
-    fmt::print("\narrest {}   peak force {:.1f} N   final velocity {:.3f} m/s\n",
-               ta.is_number() ? fmt::format("{:.4f} ms", ta.get<double>() * 1e3) : std::string("not reached"),
-               summary["peak_force_N"].get<double>(), summary["impactor_final_velocity_m_s"].get<double>());
-    fmt::print("alternation index {:.3f} (A1 {:.3f})   energy balance error {:.2e}\n",
-               summary["alternation_index"].get<double>(), summary["alternation"]["A1_lag1"].get<double>(),
-               summary["energy_balance_error"].get<double>());
+    if (scene.analysis.type == AnalysisType::Static) {
+      fmt::print("\nmax force {:.1f} N at final deflection {:.3f} mm\n", summary["max_force_N"].get<double>(),
+                 summary["final_deflection_m"].get<double>() * 1e3);
+    } else {
+      const auto& ta = summary["arrest_time_s"];
+      fmt::print("\narrest {}   peak force {:.1f} N   final velocity {:.3f} m/s\n",
+                 ta.is_number() ? fmt::format("{:.4f} ms", ta.get<double>() * 1e3) : std::string("not reached"),
+                 summary["peak_force_N"].get<double>(), summary["impactor_final_velocity_m_s"].get<double>());
+      fmt::print("alternation index {:.3f} (A1 {:.3f})   energy balance error {:.2e}\n",
+                 summary["alternation_index"].get<double>(), summary["alternation"]["A1_lag1"].get<double>(),
+                 summary["energy_balance_error"].get<double>());
+    }
     fmt::print("{} steps, {} rejected, {} Newton iterations, {} events, wall {:.3f} ms\n", r.statistics.steps,
                r.statistics.rejected_steps, r.statistics.newton_iterations, r.events.size(),
                r.statistics.wall_time_s * 1e3);
@@ -103,7 +108,7 @@ void add_hinge_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("hinge", "Plastic-hinge mechanism model of the ring chain (THEORY §3.2, §4)");
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)");
-  cmd->add_option("--level", o->level, "Model level: 0, 1, shock (2, 3 when built); default from the scene");
+  cmd->add_option("--level", o->level, "Model level: 0, 1, 2, 3, shock; default from the scene");
   cmd->add_option("--integrator", o->integrator, "ida | odeint; default from the scene");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance; default from the scene");
   cmd->add_option("--atol", o->atol, "Absolute tolerance; default from the scene");

@@ -109,6 +109,9 @@ TEST(Measures, WrappedRingIsFlagged) {
   EXPECT_NEAR(w, 120.0, 4.0);
   const auto m = measure_wrap(ring1, &ring2, R, t);
   EXPECT_TRUE(m.wrap_around);
+  // The flag is decided on S: just below and above 0.25 π R.
+  EXPECT_FALSE(wrap_flag(0.24 * pi * R, R));
+  EXPECT_TRUE(wrap_flag(0.26 * pi * R, R));
   // Ring 2 itself is intact: no inversion, no wrap over anything.
   EXPECT_FALSE(measure_wrap(ring2, nullptr, R, t).wrap_around);
 }
