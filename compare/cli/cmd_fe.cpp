@@ -79,7 +79,10 @@ void run_fe(const FeOptions& o) {
     throw std::invalid_argument("ringcrush fe: dynamic FE analyses (HHT-alpha, explicit) are not built yet; "
                                 "this FE core runs static scenes");
   const fe::FeInput in = fe_static_input(s);
-  if (!o.quiet) echo(s, in);
+  if (!o.quiet) {
+    echo(s, in);
+    std::fflush(stdout);  // the echo before the progress line on stderr
+  }
   if (o.output.empty()) throw std::invalid_argument("ringcrush fe: -o DIR is required");
   ResultsDir out(o.output);
   const fe::StaticResult r = fe::run_static(in, terminal_callbacks(o.quiet));
