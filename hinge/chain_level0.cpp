@@ -22,6 +22,7 @@
 #include <fmt/format.h>
 
 #include "chain_1d.hpp"
+#include "chain_run.hpp"
 
 namespace ringcrush::hinge {
 namespace {
@@ -295,33 +296,10 @@ ChainResult simulate_level0(const ChainInput& input, const HybridOptions& option
   if (!(input.ring.lock_stiffness_n_m > 0))
     throw std::invalid_argument("Level 0 needs a positive lock-up stiffness");
   Level0Chain model(input);
-  ChainResult result;
-  auto& h = result.history;
-  h.ring_crush_m.assign(input.rings, {});
-  h.ring_plastic_j.assign(input.rings, {});
-  std::vector<double> y = model.initial_state();
-  result.initial_kinetic_energy_j =
-      0.5 * input.impactor_mass_kg * input.impactor_velocity_m_s * input.impactor_velocity_m_s;
-  // Without a history only the first and the last state are recorded (sweeps, benchmarks).
-  std::vector<double> last;
-  double t_last = 0.0;
-  bool first = true;
-  result.outcome = run_hybrid(model, 0.0, y, options, [&](double t, const std::vector<double>& s) {
-    if (record_history || first) {
-      model.record(t, s, h);
-      first = false;
-    } else {
-      last = s;
-      t_last = t;
-    }
-  });
-  if (!record_history && !last.empty()) model.record(t_last, last, h);
-  result.events = std::move(model.events);
-  result.arrest_time_s = model.arrest_time();
-  for (int i = 0; i < input.rings; ++i) {
-    result.final_crush_m.push_back(h.ring_crush_m[i].back());
-    result.final_permanent_crush_m.push_back(y[2 * (input.rings + (input.far_end == ChainFarEnd::Free ? 1 : 0)) + i]);
-  }
+  std::vector<double> y;
+  ChainResult result = run_chain(model, input, options, record_history, y);
+  const int permanent = 2 * (input.rings + (input.far_end == ChainFarEnd::Free ? 1 : 0));
+  for (int i = 0; i < input.rings; ++i) result.final_permanent_crush_m.push_back(y[permanent + i]);
   return result;
 }
 

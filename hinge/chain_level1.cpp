@@ -32,6 +32,7 @@
 #include <fmt/format.h>
 
 #include "chain_1d.hpp"
+#include "chain_run.hpp"
 #include "mass_lcp.hpp"
 
 namespace ringcrush::hinge {
@@ -462,30 +463,8 @@ class Level1Chain final : public HybridSystem {
 ChainResult simulate_level1(const ChainInput& input, const HybridOptions& options, bool record_history) {
   input.validate();
   Level1Chain model(input);
-  ChainResult result;
-  auto& h = result.history;
-  h.ring_crush_m.assign(input.rings, {});
-  h.ring_plastic_j.assign(input.rings, {});
-  std::vector<double> y = model.initial_state();
-  result.initial_kinetic_energy_j =
-      0.5 * input.impactor_mass_kg * input.impactor_velocity_m_s * input.impactor_velocity_m_s;
-  // Without a history only the first and the last state are recorded (sweeps, benchmarks).
-  std::vector<double> last;
-  double t_last = 0.0;
-  bool first = true;
-  result.outcome = run_hybrid(model, 0.0, y, options, [&](double t, const std::vector<double>& s) {
-    if (record_history || first) {
-      model.record(t, s, h);
-      first = false;
-    } else {
-      last = s;
-      t_last = t;
-    }
-  });
-  if (!record_history && !last.empty()) model.record(t_last, last, h);
-  result.events = std::move(model.events);
-  result.arrest_time_s = model.arrest_time();
-  for (int i = 0; i < input.rings; ++i) result.final_crush_m.push_back(h.ring_crush_m[i].back());
+  std::vector<double> y;
+  ChainResult result = run_chain(model, input, options, record_history, y);
   result.final_permanent_crush_m = result.final_crush_m;
   return result;
 }
