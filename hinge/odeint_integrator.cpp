@@ -6,12 +6,23 @@
 #include <stdexcept>
 
 namespace ringcrush::hinge {
+namespace {
+using State = std::vector<double>;
+
+// Dormand–Prince 5(4) with dense output, step-size bounded when the options say so.
+auto dense_dopri5(const OdeintOptions& options) {
+  namespace odeint = boost::numeric::odeint;
+  return options.max_step > 0.0
+             ? odeint::make_dense_output(options.absolute_tolerance, options.relative_tolerance,
+                                         options.max_step, odeint::runge_kutta_dopri5<State>())
+             : odeint::make_dense_output(options.absolute_tolerance, options.relative_tolerance,
+                                         odeint::runge_kutta_dopri5<State>());
+}
+}  // namespace
 
 double integrate_dense(OdeSystem& system, std::vector<double>& y, double t0, double t1,
                        const OdeintOptions& options, const DenseStepObserver& observer,
                        OdeintStatistics* statistics) {
-  namespace odeint = boost::numeric::odeint;
-  using State = std::vector<double>;
   if (y.size() != system.size())
     throw std::invalid_argument("integrate_dense: state size does not match the system");
 
@@ -21,13 +32,7 @@ double integrate_dense(OdeSystem& system, std::vector<double>& y, double t0, dou
     system.rhs(t, x.data(), dxdt.data());
   };
 
-  auto stepper = options.max_step > 0.0
-                     ? odeint::make_dense_output(options.absolute_tolerance,
-                                                 options.relative_tolerance, options.max_step,
-                                                 odeint::runge_kutta_dopri5<State>())
-                     : odeint::make_dense_output(options.absolute_tolerance,
-                                                 options.relative_tolerance,
-                                                 odeint::runge_kutta_dopri5<State>());
+  auto stepper = dense_dopri5(options);
   stepper.initialize(y, t0, std::min(options.initial_step, t1 - t0));
 
   long steps = 0;
@@ -59,8 +64,6 @@ double integrate_dense(OdeSystem& system, std::vector<double>& y, double t0, dou
 OdeintStop integrate_until_event(OdeSystem& system, std::vector<double>& y, double t0, double t1,
                                  const OdeintOptions& options, const OdeintEventOptions& events,
                                  const StepSampler& sample, OdeintStatistics* statistics) {
-  namespace odeint = boost::numeric::odeint;
-  using State = std::vector<double>;
   if (y.size() != system.size())
     throw std::invalid_argument("integrate_until_event: state size does not match the system");
   const std::size_t nr = events.root_count;
@@ -73,13 +76,7 @@ OdeintStop integrate_until_event(OdeSystem& system, std::vector<double>& y, doub
     ++rhs_evaluations;
     system.rhs(t, x.data(), dxdt.data());
   };
-  auto stepper = options.max_step > 0.0
-                     ? odeint::make_dense_output(options.absolute_tolerance,
-                                                 options.relative_tolerance, options.max_step,
-                                                 odeint::runge_kutta_dopri5<State>())
-                     : odeint::make_dense_output(options.absolute_tolerance,
-                                                 options.relative_tolerance,
-                                                 odeint::runge_kutta_dopri5<State>());
+  auto stepper = dense_dopri5(options);
   stepper.initialize(y, t0, std::min(options.initial_step, t1 - t0));
 
   // Root values as watched: a masked root is replaced by its expected sign × tolerance (or

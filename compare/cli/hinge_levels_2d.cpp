@@ -28,6 +28,17 @@ namespace {
 
 const HingeLevelRegistration level2{"2", run_hinge_level2};
 
+// Level 2 run options from the command line, defaulting to the scene's.
+HingeRunOptions level2_options(const Scene& scene, const std::string& integrator, std::optional<double> rtol) {
+  if (integrator != "ida" && integrator != "odeint")
+    throw std::invalid_argument("--integrator must be ida or odeint");
+  HingeRunOptions opt;
+  opt.level = "2";
+  opt.integrator = integrator == "ida" ? HingeIntegrator::Ida : HingeIntegrator::Odeint;
+  opt.relative_tolerance = rtol ? *rtol : scene.hinge.relative_tolerance;
+  return opt;
+}
+
 struct BenchOptions {
   std::string scene;
   int repeat = 5;
@@ -37,12 +48,7 @@ struct BenchOptions {
 
 void bench(const BenchOptions& o) {
   const Scene scene = load_scene(o.scene);
-  HingeRunOptions opt;
-  opt.level = "2";
-  if (o.integrator != "ida" && o.integrator != "odeint")
-    throw std::invalid_argument("--integrator must be ida or odeint");
-  opt.integrator = o.integrator == "ida" ? HingeIntegrator::Ida : HingeIntegrator::Odeint;
-  opt.relative_tolerance = o.rtol ? *o.rtol : scene.hinge.relative_tolerance;
+  const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -88,12 +94,7 @@ struct ShapesOptions {
 
 void shapes(const ShapesOptions& o) {
   const Scene scene = load_scene(o.scene);
-  HingeRunOptions opt;
-  opt.level = "2";
-  if (o.integrator != "ida" && o.integrator != "odeint")
-    throw std::invalid_argument("--integrator must be ida or odeint");
-  opt.integrator = o.integrator == "ida" ? HingeIntegrator::Ida : HingeIntegrator::Odeint;
-  opt.relative_tolerance = o.rtol ? *o.rtol : scene.hinge.relative_tolerance;
+  const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   fmt::print("scene {}: {}\nhinge level 2 (polygon rings, N = {}) on {}\n", scene.name, scene.title,
              scene.hinge.nodes_per_ring, o.integrator);
   const auto run = run_level2(scene, opt);
