@@ -1,0 +1,39 @@
+// ChainInput: everything the FE needs to run one ring chain under impact (issue 4, thesis
+// §3.5, §4.2; seed/thesis_dynamic.inp), as plain data. compare/ builds it from a Scene.
+// SI units. The chain axis is y: ring 1 on top, centred at y = 0, ring i at y = −(i−1)·pitch;
+// the impactor comes down from +y onto ring 1, the target (if any) lies under the last ring.
+#pragma once
+
+#include "fe/fe_input.hpp"
+
+namespace ringcrush::fe {
+
+enum class JointKind {
+  Welded,  // neighbours share their touching node (the thesis's *MPC ties): exact constraint
+  Free,    // contact only
+  Plates,  // a rigid plate (one y dof, with mass) between each pair of neighbours
+};
+
+struct ChainInput {
+  int rings = 6;
+  RingInput ring;            // every ring is the same (Reid & Reddy chains)
+  MaterialInput material;
+  double density_kg_m3 = 7850.0;
+  MeshInput mesh;            // mesh.half_ring: the thesis's x = 0 symmetry model
+  Integration integration = Integration::Reduced;
+  ContactInput contact;      // penalty scale and smoothing also used ring↔ring and ring↔plate
+  // Distance between neighbouring ring centres: 2·outer radius for welded and free chains
+  // (touching), 2·outer radius + plate thickness for plates.
+  double pitch_m = 0.0508;
+  JointKind joints = JointKind::Welded;
+  double plate_mass_kg = 0.0;        // plates only: physical (full) mass of one plate
+  double plate_thickness_m = 0.0;    // plates only
+  double impactor_mass_kg = 0.256;   // physical (full) mass; a half model carries half
+  double impactor_velocity_m_s = 30; // toward the chain (> 0)
+  bool fixed_target = true;          // rigid plane under the last ring; false: free far end
+};
+
+// Throws std::invalid_argument naming the first inconsistent value.
+void validate(const ChainInput& input);
+
+}  // namespace ringcrush::fe

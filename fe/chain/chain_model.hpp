@@ -1,0 +1,92 @@
+// ChainModel: a chain of CPS8 rings with its impactor, target, interleaved plates and
+// welded ties, as a DynamicSystem (dynamic_system.hpp). Built from a ChainInput.
+//
+// Degrees of freedom are nodal (2 per node, SparseSystem): the rings' nodes (with welded
+// neighbours sharing their touching node), then one node per rigid body — the impactor and,
+// for `plates` joints, each plate — whose x dof is fixed and whose y dof carries the body.
+// Contact (all penalty, frictionless, energy-conserving potentials):
+//  - impactor's lower face against ring 1's outer surface; the target plane (fixed) against
+//    the last ring; each plate's two faces against the rings above and below it;
+//  - ring i's outer surface against ring j's for every pair whose padded bounding boxes
+//    overlap (broad phase), two passes (i's nodes on j's surface and j's on i's), so
+//    neither ring is master;
+//  - every ring's inner wall against itself (lock-up), as RingContact does for one ring.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "fe/chain/chain_input.hpp"
+#include "fe/dynamics/dynamic_system.hpp"
+#include "fe/element/cps8_element.hpp"
+#include "fe/mesh/ring_mesh.hpp"
+
+namespace ringcrush::fe {
+
+// The assembled mesh of the chain (global node numbering).
+struct ChainMesh {
+  std::vector<Eigen::Vector2d> nodes;        // reference coordinates; rigid-body nodes last
+  std::vector<std::array<int, 8>> elements;  // CPS8 connectivity, all rings
+  std::vector<int> element_ring;             // ring (0-based) of each element
+  // Per ring: global ids of its outer-surface nodes ordered by material angle θ from the top
+  // apex (θ = 0) through the side (π/2) to the bottom (π) — and on to 2π for a full ring —
+  // and θ of each (reference). Feeds compare/measures (RingShape).
+  std::vector<std::vector<int>> ring_outer_nodes;
+  std::vector<std::vector<double>> ring_outer_theta;
+  std::vector<double> ring_centre_y;         // reference centre of each ring
+  int impactor_node = -1;
+  std::vector<int> plate_nodes;              // plates joints: plate k between rings k and k+1
+  bool half_ring = true;
+};
+
+struct ChainContactForces {
+  double impactor_n = 0;       // contact force on the impactor (model, ≥ 0, pushing it up)
+  double target_n = 0;         // force of the target on the last ring (model, ≥ 0)
+  double ring_ring_n = 0;      // Σ |normal force| of ring↔ring contact (model)
+  double self_n = 0;           // Σ |normal force| of inner-wall contact (model)
+  double max_penetration_m = 0;
+  int active = 0;              // active contact points
+  int pairs_checked = 0;       // ring pairs that passed the broad phase
+};
+
+class ChainModel final : public DynamicSystem {
+ public:
+  explicit ChainModel(const ChainInput& input);
+  ~ChainModel() override;
+
+  const ChainInput& input() const { return input_; }
+  const ChainMesh& mesh() const { return mesh_; }
+  // Forces, masses and energies of the whole chain = symmetry_factor × those of the model.
+  double symmetry_factor() const { return mesh_.half_ring ? 2.0 : 1.0; }
+
+  // DynamicSystem
+  int dofs() const override;
+  const std::vector<int>& fixed_dofs() const override;
+  const Eigen::VectorXd& lumped_mass() const override;
+  Eigen::VectorXd initial_velocity() const override;
+  void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) override;
+  void commit(const Eigen::VectorXd& u) override;
+  SparseSystem& tangent_system() override;
+  StableStep stable_step(const Eigen::VectorXd& u) const override;
+
+  // Contact forces of the last evaluate().
+  const ChainContactForces& contact_forces() const;
+  // Contact pressure per node of the last evaluate() (for field output).
+  std::vector<double> contact_pressure() const;
+  int impactor_dof() const { return 2 * mesh_.impactor_node + 1; }
+  // Outer extent of ring i along the chain axis at displacement u (H_i of DESIGN.md).
+  double ring_extent(int ring, const Eigen::VectorXd& u) const;
+  // Point-averaged Mises and PEEQ per element, committed states.
+  std::vector<Cps8Fields> element_fields() const;
+  // Largest committed point PEEQ of each ring.
+  std::vector<double> max_peeq_per_ring() const;
+
+ private:
+  struct Impl;
+  ChainInput input_;
+  ChainMesh mesh_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ringcrush::fe

@@ -1,0 +1,58 @@
+// The one interface the dynamic drivers step (STYLE.md practice 5; thesis §3.5): a
+// semi-discrete system  M ü + f(u) = 0  with a lumped (diagonal) mass, internal + contact
+// force f that depends on the path only through committed states, and its tangent ∂f/∂u.
+// The explicit central-difference and the HHT-α drivers know nothing else about rings, so
+// they are verified on small closed-form systems and then run on the ChainModel unchanged.
+//
+// Contract:
+//  - u is the total displacement from the reference configuration; evaluate(u) writes only
+//    trial (path) states relative to the last commit, so a rejected step leaves no trace;
+//  - commit(u) makes the trial states of the last evaluate(u) the committed ones;
+//  - fixed dofs stay at zero displacement; `force` carries their reactions;
+//  - the energies are those of the model (a half model's, not doubled).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "fe/assembly/sparse_system.hpp"
+
+namespace ringcrush::fe {
+
+struct SystemEvaluation {
+  Eigen::VectorXd force;          // f(u): internal + contact, all dofs
+  double elastic_energy = 0;      // recoverable strain energy (J)
+  double plastic_work = 0;        // plastic dissipation since t = 0 (J)
+  double contact_energy = 0;      // penalty energy stored in the active contacts (J)
+  double contact_time_s = 0;      // wall time spent in contact search and forces
+};
+
+struct StableStep {
+  double step_s = 0;              // 2/ω_max (without the driver's safety factor)
+  std::string limited_by;         // e.g. "element 17 (ring 1)", "contact penalty, node 230"
+};
+
+class DynamicSystem {
+ public:
+  virtual ~DynamicSystem() = default;
+
+  virtual int dofs() const = 0;
+  virtual const std::vector<int>& fixed_dofs() const = 0;
+  // Diagonal (lumped) mass per dof, > 0 on every free dof.
+  virtual const Eigen::VectorXd& lumped_mass() const = 0;
+  virtual Eigen::VectorXd initial_velocity() const = 0;
+
+  // want_tangent: also assemble ∂f/∂u into tangent_system().matrix() (free dofs only; the
+  // pattern holds the diagonal of every free dof, so a driver may add M/(βΔt²) there).
+  virtual void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) = 0;
+  virtual void commit(const Eigen::VectorXd& u) = 0;
+  virtual SparseSystem& tangent_system() = 0;
+
+  // Bound on the highest frequency at displacement u (element eigenvalue inequality plus
+  // the active contact stiffness over the node mass); the explicit driver multiplies the
+  // step by its safety factor.
+  virtual StableStep stable_step(const Eigen::VectorXd& u) const = 0;
+};
+
+}  // namespace ringcrush::fe
