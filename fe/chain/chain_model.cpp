@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/chain/geometry_update.hpp"
@@ -232,13 +234,18 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
         passes.push_back(std::move(p));
   m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth);
   m.surface->set_mass(m.mass);
-  const bool two = input.threads == 2 || (input.threads == 0 && std::thread::hardware_concurrency() >= 2 && ne >= 64);
-  if (two) {
-    m.fork = std::make_unique<ForkJoin>();
-    // The caller also does the contact (~20 % of the element work on the thesis chain).
-    m.split = static_cast<int>(0.45 * ne);
-    m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
+  // Threads: automatic = two when the machine has two cores that are not already busy (on
+  // an oversubscribed machine the fork-join waits on the scheduler and runs slower than
+  // one thread) and the chain is big enough to pay for the join (~1 µs).
+  bool two = input.threads == 2;
+  if (input.threads == 0 && std::thread::hardware_concurrency() >= 2 && ne >= 64) {
+    double load[1] = {0};
+    two = getloadavg(load, 1) == 1 && load[0] < std::thread::hardware_concurrency() - 0.5;
   }
+  // The caller also does the contact (~20 % of the element work on the thesis chain).
+  m.split = static_cast<int>(0.45 * ne);
+  m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
+  if (two) m.fork = std::make_unique<ForkJoin>();
   m.contributions.reserve(256);
   m.pressure.reserve(256);
 }
@@ -354,6 +361,9 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   out.force.setZero();
   double elastic = 0, plastic = 0;
   const int ne = static_cast<int>(mesh_.elements.size());
+  // Two partial sums, elements [0, split) and [split, ne), on one thread or two: the same
+  // arithmetic either way, so the result does not depend on the threads.
+  double helper_elastic = 0, helper_plastic = 0;
   if (m.fork) {
     if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
     Impl::ElementJob job{&m, &u, want_tangent};
@@ -361,9 +371,8 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
       contact();
       m.elements(0, m.split, u, want_tangent, true, out.force.data(), elastic, plastic);
     });
-    out.force += m.helper_force;
-    elastic += job.elastic;
-    plastic += job.plastic;
+    helper_elastic = job.elastic;
+    helper_plastic = job.plastic;
     if (want_tangent) {
       prepare_tangent();
       for (int e = 0; e < ne; ++e) m.system->add_element(e, m.tangents[e].data());
@@ -371,8 +380,13 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   } else {
     contact();
     if (want_tangent) prepare_tangent();
-    m.elements(0, ne, u, want_tangent, false, out.force.data(), elastic, plastic);
+    m.elements(0, m.split, u, want_tangent, false, out.force.data(), elastic, plastic);
+    m.helper_force.setZero();
+    m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), helper_elastic, helper_plastic);
   }
+  out.force += m.helper_force;
+  elastic += helper_elastic;
+  plastic += helper_plastic;
   for (const auto& c : m.contributions) {
     for (int a = 0; a < c.count; ++a) {
       out.force(2 * c.nodes[a]) += c.force(2 * a);
