@@ -51,6 +51,7 @@ HhtDriver::HhtDriver(DynamicSystem& system, const HhtOptions& options, const Eig
   a_ = Eigen::VectorXd::Zero(n);
   for (int d : free_) a_(d) = -ev_.force(d) / mass_(d);
   energy_.start(EnergyBalance::kinetic_energy(mass_, v_), ev_);
+  f_prev_ = ev_.force;  // f_{−1} = f_0: the start satisfies M a_0 + f_0 = 0, i.e. (3.5-2a) with it
   r_ = Eigen::VectorXd::Zero(n);
 }
 
@@ -114,15 +115,19 @@ void HhtDriver::add_mass_to_tangent(double c0) {
 HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::VectorXd& a) {
   Newton out;
   const double c0 = 1.0 / (beta_ * dt * dt);
-  // u* = the part of u_{n+1} known at t_n; a_{n+1} = (u_{n+1} − u*) / (βΔt²).
-  const Eigen::VectorXd u_star = u_ + dt * v_ + (0.5 - beta_) * dt * dt * a_;
-  u = u_star + beta_ * dt * dt * a_;  // predictor: a_{n+1} = a_n
+  // The unknown is the step increment Δu = u_{n+1} − u_n, so that the inertia term
+  // M a_{n+1} = M (Δu − Δu*)/(βΔt²) is formed from small numbers: with u itself the
+  // cancellation u − u* loses ~|u|·ε/(βΔt²) of force, which at the smallest steps exceeds PTOL.
+  // Δu* = the part known at t_n; the predictor takes a_{n+1} = a_n.
+  const Eigen::VectorXd du_star = dt * v_ + (0.5 - beta_) * dt * dt * a_;
+  du_ = du_star + beta_ * dt * dt * a_;
   double last_correction = INFINITY, previous = INFINITY;
   SparseSystem& s = sys_.tangent_system();
   for (int it = 0;; ++it) {
+    u = u_ + du_;
     sys_.evaluate(u, true, ev_trial_);
     contact_time_ += ev_trial_.contact_time_s;
-    a = c0 * (u - u_star);
+    a = c0 * (du_ - du_star);
     for (int d : free_) r_(d) = mass_(d) * a(d) + (1 + opt_.alpha) * ev_trial_.force(d) - opt_.alpha * ev_.force(d);
     int at = -1;
     const double rmax = max_free(r_, at);
@@ -134,7 +139,7 @@ HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::Vector
       return out;
     }
     double incr = 0;
-    for (int d : free_) incr = std::max(incr, std::abs(u(d) - u_(d)));
+    for (int d : free_) incr = std::max(incr, std::abs(du_(d)));
     if (rmax <= opt_.ptol_n &&
         (last_correction <= opt_.correction_tolerance * std::max(incr, 1e-300) || rmax <= 1e-3 * opt_.ptol_n)) {
       out.converged = true;
@@ -164,7 +169,7 @@ HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::Vector
       out.reason = "non-finite Newton correction";
       return out;
     }
-    for (int i = 0; i < s.free_dofs(); ++i) u(dofs[static_cast<std::size_t>(i)]) += dx_(i);
+    for (int i = 0; i < s.free_dofs(); ++i) du_(dofs[static_cast<std::size_t>(i)]) += dx_(i);
     last_correction = dx_.cwiseAbs().maxCoeff();
   }
 }
@@ -198,8 +203,11 @@ void HhtDriver::step(double t_limit) {
       u_half_ = u_ + h * v_ + h * h * ((0.5 - beta_) * a_ + beta_ * a_half_);
       sys_.evaluate(u_half_, false, ev_half_);
       contact_time_ += ev_half_.contact_time_s;
+      // The α-term of (3.5-2a) lags one step: at t + Δt/2 it is taken, like the
+      // accelerations, linear over the previous step, ½ (f_{n−1} + f_n).
       for (int d : free_)
-        r_(d) = mass_(d) * a_half_(d) + (1 + opt_.alpha) * ev_half_.force(d) - opt_.alpha * ev_.force(d);
+        r_(d) = mass_(d) * a_half_(d) + (1 + opt_.alpha) * ev_half_.force(d) -
+                0.5 * opt_.alpha * (f_prev_(d) + ev_.force(d));
       int at = -1;
       const double rh = max_free(r_, at);
       attempt.half_step_residual_n = rh;
@@ -234,7 +242,8 @@ void HhtDriver::step(double t_limit) {
     if (keep_attempts) attempts_.push_back(attempt);
 
     sys_.commit(u_new_);
-    du_ = u_new_ - u_;
+    f_prev_ = ev_.force;
+    du_ = u_new_ - u_;  // the converged increment (a half-step evaluation does not touch it)
     energy_.add_step(ev_.force, ev_trial_.force, du_);
     std::swap(ev_, ev_trial_);
     u_.swap(u_new_);

@@ -18,10 +18,16 @@
 // Step control (thesis §3.5, steps 1–6). After convergence, the accelerations are taken
 // linear over the step, a(τ) = (1 − τ) a_n + τ a_{n+1}; at τ = ½ the Newmark formulas give
 //   u_{n+½} = u_n + (Δt/2) v_n + (Δt/2)² ((½ − β) a_n + β a_{n+½}),
-// and the equilibrium equation (3.5-2a) written at t + Δt/2,
-//   R_{n+½} = M a_{n+½} + (1 + α) f(u_{n+½}) − α f(u_n),
-// is evaluated (a trial evaluation only: the system is then re-evaluated at u_{n+1} before
-// commit, so the committed path never sees the half-step state). With R = max |R_{n+½}|
+// and the equilibrium equation (3.5-2a) written at t + Δt/2, its α-term (which lags one
+// step) interpolated linearly over the previous step like the accelerations (the form of
+// Hibbitt & Karlsson used by ABAQUS),
+//   R_{n+½} = M a_{n+½} + (1 + α) f(u_{n+½}) − (α/2) (f_{n−1} + f_n),
+// is evaluated. When (3.5-2a) holds at t_n and t_{n+1} it reduces to
+// (1 + α) [f(u_{n+½}) − ½ (f_n + f_{n+1})], the departure of the force at the mid-step state
+// from the chord: it vanishes as Δt → 0 and measures how well Δt resolves the response. (With
+// the plain α f_n instead, R would tend to −α (f_n − f_{n−1}) ≠ 0 as Δt → 0, and a halving
+// could never end.) The half-step evaluation is a trial only: the system is re-evaluated at
+// u_{n+1} before commit, so the committed path never sees the half-step state. With R = max |R_{n+½}|
 // over the free dofs:
 //   R > HAFTOL                 → reject the step, Δt ← Δt/2, restart from t;
 //   HAFTOL/2 < R ≤ HAFTOL      → accept, keep Δt;
@@ -121,7 +127,7 @@ class HhtDriver {
   long diag_version_ = -1;
   Eigen::VectorXd mass_;            // lumped mass (fixed dofs: as given, not used)
   std::vector<int> free_;           // free dofs
-  Eigen::VectorXd u_, v_, a_, u_new_, a_new_, v_new_, u_half_, a_half_, r_, du_, rhs_, dx_;
+  Eigen::VectorXd u_, v_, a_, f_prev_, u_new_, a_new_, v_new_, u_half_, a_half_, r_, du_, rhs_, dx_;
   SystemEvaluation ev_, ev_trial_, ev_half_;
   EnergyBalance energy_;
   double t_ = 0, dt_ = 0, last_dt_ = 0;
