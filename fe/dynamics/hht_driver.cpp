@@ -222,9 +222,8 @@ void HhtDriver::step(double t_limit) {
                dt, rh, at);
         continue;
       }
-      // Accepted: re-evaluate at u_{n+1} so the trial states committed are those of the step end.
-      sys_.evaluate(u_new_, false, ev_trial_);
-      contact_time_ += ev_trial_.contact_time_s;
+      // Accepted. ev_trial_ still holds f(u_{n+1}) from Newton; commit(u_{n+1}) restores the
+      // step-end trial states itself (dynamic_system.hpp), the half-step state never commits.
       if (rh > 0.5 * opt_.haftol_n) {
         small_count_ = 0;
         attempt.outcome = "kept";

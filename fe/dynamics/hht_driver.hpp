@@ -26,8 +26,8 @@
 // (1 + α) [f(u_{n+½}) − ½ (f_n + f_{n+1})], the departure of the force at the mid-step state
 // from the chord: it vanishes as Δt → 0 and measures how well Δt resolves the response. (With
 // the plain α f_n instead, R would tend to −α (f_n − f_{n−1}) ≠ 0 as Δt → 0, and a halving
-// could never end.) The half-step evaluation is a trial only: the system is re-evaluated at
-// u_{n+1} before commit, so the committed path never sees the half-step state. With R = max |R_{n+½}|
+// could never end.) The half-step evaluation is a trial only: commit(u_{n+1}) re-evaluates the
+// trial states at u_{n+1} (dynamic_system.hpp), so the committed path never sees it. With R = max |R_{n+½}|
 // over the free dofs:
 //   R > HAFTOL                 → reject the step, Δt ← Δt/2, restart from t;
 //   HAFTOL/2 < R ≤ HAFTOL      → accept, keep Δt;
