@@ -182,11 +182,7 @@ DeckModel load_deck(const std::filesystem::path& file) {
   if (!in) throw std::invalid_argument("cannot open deck " + file.string());
   std::ostringstream ss;
   ss << in.rdbuf();
-  try {
-    return read_deck(ss.str());
-  } catch (const DeckError& e) {
-    throw DeckError(e.line(), file.string() + ": " + e.reason());
-  }
+  return read_deck(ss.str());
 }
 
 }  // namespace ringcrush::fe::deck
