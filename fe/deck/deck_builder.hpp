@@ -55,7 +55,9 @@ class DeckBuilder {
   void add_node(int label, const Point& x, int line);
   void add_element(int label, Element e);
   // Adds a label to a set, creating the set at `line` if needed.
-  static void add_to_set(std::map<std::string, LabelSet>& sets, const std::string& name, int label, int line);
+  void add_to_set(std::map<std::string, LabelSet>& sets, const std::string& name, int label, int line);
+  // Counts generated items against max_generated; throws at `line` beyond it.
+  void spend(long long items, int line);
   // A data field naming either one node or a node set.
   std::vector<int> nodes_of(const Fields& f, std::size_t i, const char* what) const;
   const LabelSet& nset_named(const Card& card, const std::string& name, int line) const;
@@ -69,6 +71,7 @@ class DeckBuilder {
   std::optional<std::size_t> interface_;  // *INTERFACE whose sub-options are being read
   bool in_plot_ = false;                  // after *PLOT: *DRAW, *DISPLACED, *CONTOUR allowed
   bool in_step_ = false;
+  long long generated_ = 0;
 };
 
 // Checks a card against its allowed parameters and data-line presence.

@@ -24,7 +24,11 @@ class DeckError : public std::invalid_argument {
 // Hard limits that keep a hostile or mistyped deck from exhausting memory (issue 5 item 4).
 // ABAQUS 4.8 itself numbered nodes and elements below 10^8; the thesis decks stay below 10^4.
 inline constexpr long long max_label = 99'999'999;     // largest node / element number
-inline constexpr long long max_entities = 2'000'000;    // nodes, elements, or members of one set
+inline constexpr long long max_entities = 1'000'000;    // nodes, elements, or members of one set
 inline constexpr std::size_t max_deck_bytes = 64u << 20; // 64 MiB of text
+// Total of generated nodes, elements, set memberships, constraints and slide-line nodes:
+// a few bytes of *NGEN and set references can otherwise ask for gigabytes.
+inline constexpr long long max_generated = 4'000'000;
+inline constexpr std::size_t max_parameters = 64;       // parameters on one keyword line
 
 }  // namespace ringcrush::fe::deck

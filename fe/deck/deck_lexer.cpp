@@ -74,6 +74,8 @@ Card parse_keyword_line(std::string_view text, int number) {
         throw DeckError(number, "*" + card.keyword + ": parameter " + par.name + "= has no value");
     }
     if (par.name.empty()) throw DeckError(number, "*" + card.keyword + ": parameter without a name");
+    if (card.parameters.size() >= max_parameters)
+      throw DeckError(number, "*" + card.keyword + ": more than " + std::to_string(max_parameters) + " parameters");
     if (card.find(par.name) != nullptr)
       throw DeckError(number, "*" + card.keyword + ": parameter " + par.name + " given twice");
     card.parameters.push_back(std::move(par));

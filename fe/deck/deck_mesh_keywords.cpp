@@ -38,6 +38,13 @@ std::vector<int> shifted_nodes(const Element& e, long long shift, const Fields& 
   return out;
 }
 
+// Increments and label shifts are bounded by the label range, so that label arithmetic
+// (count × increment ≤ 2·10^6 × 10^8) can never overflow.
+long long checked_increment(const Fields& f, long long v, const char* what) {
+  if (v < -max_label || v > max_label) f.fail(std::string(what) + " " + str(v) + " outside ±" + str(max_label));
+  return v;
+}
+
 void check_count(const Fields& f, long long count, const char* what) {
   if (count < 1 || count > max_entities)
     f.fail(std::string(what) + " " + str(count) + " outside 1.." + str(max_entities));
@@ -65,7 +72,15 @@ int node_count(ElementType t) {
   return 0;
 }
 
+void DeckBuilder::spend(long long items, int line) {
+  generated_ += items;
+  if (generated_ > max_generated)
+    throw DeckError(line, "the deck generates more than " + str(max_generated) +
+                              " nodes, elements, set members and constraints in all");
+}
+
 void DeckBuilder::add_node(int label, const Point& x, int line) {
+  spend(1, line);
   const auto it = m_.nodes.find(label);
   if (it != m_.nodes.end())
     throw DeckError(line, "node " + std::to_string(label) + " defined twice (first at line " +
@@ -78,6 +93,7 @@ void DeckBuilder::add_node(int label, const Point& x, int line) {
 }
 
 void DeckBuilder::add_element(int label, Element e) {
+  spend(1, e.line);
   const auto it = m_.elements.find(label);
   if (it != m_.elements.end())
     throw DeckError(e.line, "element " + std::to_string(label) + " defined twice (first at line " +
@@ -92,6 +108,7 @@ void DeckBuilder::add_element(int label, Element e) {
 }
 
 void DeckBuilder::add_to_set(std::map<std::string, LabelSet>& sets, const std::string& name, int label, int line) {
+  spend(1, line);
   LabelSet& s = sets[name];
   if (s.line == 0) s.line = line;
   if (s.members.contains(label)) return;
@@ -199,8 +216,8 @@ void DeckBuilder::ncopy(const Card& card) {
   allow_parameters(card, {"CHANGE NUMBER", "OLD SET", "NEW SET", "SHIFT", "REFLECT", "MULTIPLE"});
   require_data(card);
   const long long change = integer_parameter(card, "CHANGE NUMBER", 0);
-  if (!card.has("CHANGE NUMBER") || change == 0)
-    throw DeckError(card.line, "*NCOPY: CHANGE NUMBER must be given and non-zero");
+  if (!card.has("CHANGE NUMBER") || change == 0 || change < -max_label || change > max_label)
+    throw DeckError(card.line, "*NCOPY: CHANGE NUMBER must be given, non-zero and within ±" + str(max_label));
   if (integer_parameter(card, "MULTIPLE", 1) != 1)
     throw DeckError(card.line, "*NCOPY: MULTIPLE other than 1 is not supported");
   const LabelSet& old_set = nset_named(card, card.required("OLD SET"), card.line);
@@ -277,10 +294,12 @@ void DeckBuilder::elgen(const Card& card) {
     const auto it = m_.elements.find(master);
     if (it == m_.elements.end()) f.fail("master element " + str(master) + " is not defined");
     const Element base = it->second;
-    const long long n1 = f.integer_or(1, 1, "number of elements"), dn1 = f.integer_or(2, 1, "node increment"),
-                    de1 = f.integer_or(3, 1, "element increment");
-    const long long n2 = f.integer_or(4, 1, "number of rows"), dn2 = f.integer_or(5, 1, "row node increment"),
-                    de2 = f.integer_or(6, 1, "row element increment");
+    const long long n1 = f.integer_or(1, 1, "number of elements");
+    const long long dn1 = checked_increment(f, f.integer_or(2, 1, "node increment"), "node increment");
+    const long long de1 = checked_increment(f, f.integer_or(3, 1, "element increment"), "element increment");
+    const long long n2 = f.integer_or(4, 1, "number of rows");
+    const long long dn2 = checked_increment(f, f.integer_or(5, 1, "row node increment"), "row node increment");
+    const long long de2 = checked_increment(f, f.integer_or(6, 1, "row element increment"), "row element increment");
     check_count(f, n1, "number of elements");
     check_count(f, n2, "number of rows");
     check_count(f, n1 * n2, "number of generated elements");
@@ -301,9 +320,11 @@ void DeckBuilder::elcopy(const Card& card) {
   allow_parameters(card, {"ELEMENT SHIFT", "OLD SET", "SHIFT NODES", "NEW SET", "REFLECT"});
   forbid_data(card);
   const long long shift = integer_parameter(card, "ELEMENT SHIFT", 0);
-  if (!card.has("ELEMENT SHIFT") || shift == 0)
-    throw DeckError(card.line, "*ELCOPY: ELEMENT SHIFT must be given and non-zero");
+  if (!card.has("ELEMENT SHIFT") || shift == 0 || shift < -max_label || shift > max_label)
+    throw DeckError(card.line, "*ELCOPY: ELEMENT SHIFT must be given, non-zero and within ±" + str(max_label));
   const long long node_shift = integer_parameter(card, "SHIFT NODES", 0);
+  if (node_shift < -max_label || node_shift > max_label)
+    throw DeckError(card.line, "*ELCOPY: SHIFT NODES outside ±" + str(max_label));
   const std::vector<int> labels = elset_named(card, card.required("OLD SET"), card.line).labels;
   const auto new_set = card.value("NEW SET");
   const bool reflect = card.has("REFLECT");

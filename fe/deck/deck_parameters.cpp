@@ -65,6 +65,7 @@ bool element_centre(const DeckModel& m, const Element& e, Xy& centre, Xy& radial
   if (std::abs(det) <= 1e-12 * length(d) * length(f)) return false;  // parallel: no centre
   const double s = cross(minus(p[b0], p[a0]), f) / det;
   centre = {p[a0].x + s * d.x, p[a0].y + s * d.y};
+  if (!std::isfinite(centre.x) || !std::isfinite(centre.y)) return false;  // coordinates overflow
   radial_a = d;
   radial_b = f;
   return true;
@@ -143,7 +144,7 @@ RingAnalysis find_rings(const DeckModel& m) {
       r.outer_radius = std::max(r.outer_radius, rad);
       out.ring_of_node[n] = k;
     }
-    if (!(r.inner_radius > 0.0 && r.outer_radius > r.inner_radius))
+    if (!(r.inner_radius > 0.0 && r.outer_radius > r.inner_radius && std::isfinite(r.outer_radius)))
       fail("ring " + std::to_string(k + 1) + " has no wall (inner radius " + num(r.inner_radius) + ")");
   }
   for (int e : out.rings.front().elements)
@@ -199,6 +200,7 @@ DeckParameters deck_parameters(const DeckModel& m) {
 
   // Every ring the same, on one vertical line, evenly spaced.
   p.elements_through = layers_through(m, first);
+  if (p.elements_through < 1) fail("the corner nodes of ring 1 all lie at one radius: no wall");
   for (std::size_t k = 0; k < p.rings.size(); ++k) {
     const DeckRing& r = p.rings[k];
     const std::string which = "ring " + std::to_string(k + 1);

@@ -238,6 +238,7 @@ void DeckBuilder::slide_line(const Card& card) {
         f.fail("nodes " + std::to_string(a) + " to " + std::to_string(b) + " are not reached in steps of " +
                std::to_string(inc));
       if ((b - a) / inc + 1 > max_entities) f.fail("too many slide-line nodes");
+      spend((b - a) / inc + 1, r.line);
       for (long long n = a;; n += inc) {
         if (!m_.nodes.contains(static_cast<int>(n))) f.fail("node " + std::to_string(n) + " is not defined");
         s.nodes.push_back(static_cast<int>(n));
@@ -304,6 +305,7 @@ void DeckBuilder::boundary(const Card& card) {
       if (r.size() > 2) f.fail("a symbolic boundary type takes no further fields");
       written = what;
     }
+    spend(static_cast<long long>(nodes.size() * ranges.size()), r.line);
     for (int n : nodes)
       for (const auto& [a, b] : ranges) out.push_back(Constraint{n, a, b, value, written, r.line});
   }
@@ -321,6 +323,7 @@ void DeckBuilder::initial_conditions(const Card& card) {
     const long long dof = f.integer(1, "dof");
     if (dof < 1 || dof > 6) f.fail("dof " + std::to_string(dof) + " outside 1..6");
     const double v = f.real(2, "velocity");
+    spend(static_cast<long long>(nodes.size()), r.line);
     for (int n : nodes) m_.initial_velocities.push_back(InitialVelocity{n, static_cast<int>(dof), v, r.line});
   }
 }

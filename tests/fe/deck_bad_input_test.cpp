@@ -84,6 +84,7 @@ TEST(DeckCounts, HugeLabelsAndGenerationsAreRefusedBeforeAllocating) {
   expect_error("*NODE\n100000000,0.,0.\n", 2, "outside 1..99999999");
   expect_error("*NODE\n1,0.,0.\n99999999,1.,0.\n*NGEN\n1,99999999,1\n", 5, "number of generated intervals");
   expect_error(two_nodes + "*ELEMENT,TYPE=MASS\n1,1\n*ELGEN\n1,3000000,0,1\n", 7, "number of elements 3000000");
+  expect_error(two_nodes + "*ELEMENT,TYPE=MASS\n1,1\n*ELGEN\n1,1000,0,1,1001,0,1000\n", 7, "number of generated elements 1001000");
   expect_error(two_nodes + "*NSET,NSET=A,GENERATE\n1,99999999,1\n", 5, "number of generated members");
   expect_error(two_nodes + "*STEP,INC=1000000000000\n", 4, "INC=1000000000000");
 }
@@ -132,4 +133,30 @@ TEST(DeckValues, NonPhysicalMaterialAndSteps) {
   expect_error("*MATERIAL,NAME=S\n*PLASTIC\n2.7E8,0.1\n", 3, "must be at plastic strain 0");
   expect_error(two_nodes + "*STEP\n*DYNAMIC,ALPHA=-0.5\n1.E-6,1.E-3\n*END STEP\n", 5, "ALPHA");
   expect_error(two_nodes + "*STEP\n*STATIC\n0.,1.\n*END STEP\n", 6, "initial increment must be positive");
+}
+
+TEST(DeckCounts, IncrementsThatWouldOverflowLabelArithmeticAreRefused) {
+  expect_error(two_nodes + "*ELEMENT,TYPE=MASS\n1,1\n*ELGEN\n1,2,9000000000000000000,1\n", 7, "node increment");
+  expect_error(two_nodes + "*NSET,NSET=A\n1\n*NCOPY,CHANGE NUMBER=9000000000000000000,OLD SET=A,SHIFT\n0.,0.\n", 6,
+               "CHANGE NUMBER");
+}
+
+TEST(DeckCounts, AmplificationBySetReferencesHitsTheGenerationBudget) {
+  // 10^6 nodes from two *NODE lines and one *NGEN, then the set of them referenced over and
+  // over: each line is small, the total is refused at the keyword that crosses max_generated.
+  std::string deck = "*NODE\n1,0.,0.\n1000000,1.,0.\n*NGEN,NSET=BIG\n1,1000000,1\n*NSET,NSET=COPY\n";
+  for (int i = 0; i < 5; ++i) deck += "BIG\n";
+  try {
+    fd::read_deck(deck);
+    ADD_FAILURE() << "accepted";
+  } catch (const fd::DeckError& e) {
+    EXPECT_EQ(e.line(), 6);
+    EXPECT_NE(e.reason().find("generates more than"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DeckKeywordsLimits, TooManyParameters) {
+  std::string line = "*NODE";
+  for (int i = 0; i < 70; ++i) line += ",P" + std::to_string(i) + "=1";
+  expect_error(line + "\n1,0.,0.\n", 1, "more than 64 parameters");
 }
