@@ -180,6 +180,11 @@ DeckModel read_deck(std::string_view text) {
 DeckModel load_deck(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::invalid_argument("cannot open deck " + file.string());
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(file, ec);
+  if (!ec && bytes > max_deck_bytes)  // refuse before reading it into memory
+    throw DeckError(0, "deck is " + std::to_string(bytes) + " bytes, above the limit of " +
+                           std::to_string(max_deck_bytes));
   std::ostringstream ss;
   ss << in.rdbuf();
   return read_deck(ss.str());
