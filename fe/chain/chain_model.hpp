@@ -48,6 +48,8 @@ struct ChainContactForces {
   double max_penetration_m = 0;
   int active = 0;              // active contact points
   int pairs_checked = 0;       // ring pairs that passed the broad phase
+  long candidate_pairs = 0;    // (node, surface piece) pairs in the contact candidate list
+  long list_rebuilds = 0;      // candidate-list builds so far (ring_pair_contact.hpp)
 };
 
 class ChainModel final : public DynamicSystem {

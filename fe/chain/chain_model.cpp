@@ -1,0 +1,386 @@
+#include "fe/chain/chain_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "fe/chain/chain_mesh.hpp"
+#include "fe/contact/ring_pair_contact.hpp"
+#include "fe/dynamics/lumped_mass.hpp"
+#include "fe/material/j2_plane_stress.hpp"
+
+namespace ringcrush::fe {
+
+namespace {
+
+// A rigid flat face (impactor, target, plate face) against the outer nodes of some rings.
+// Gap g = dir · (y_s − y_face): dir = +1 for a face looking up (rings above it: target,
+// plate top), −1 for a face looking down (rings below: impactor, plate bottom).
+struct RigidFace {
+  enum class Kind { Impactor, Target, Plate } kind;
+  int body_node = -1;   // −1: fixed in space
+  double y_ref = 0;     // reference face position
+  double dir = 1;
+  std::vector<int> rings;
+};
+
+// Shortest current edge of a CPS8 element (each side through its mid-side node).
+double shortest_edge(const std::array<int, 8>& conn, const std::vector<Eigen::Vector2d>& x) {
+  static constexpr int side[4][3] = {{0, 4, 1}, {1, 5, 2}, {2, 6, 3}, {3, 7, 0}};
+  double h = 1e300;
+  for (const auto& s : side)
+    h = std::min(h, (x[conn[s[0]]] - x[conn[s[1]]]).norm() + (x[conn[s[1]]] - x[conn[s[2]]]).norm());
+  return h;
+}
+
+}  // namespace
+
+struct ChainModel::Impl {
+  ChainTopology topo;
+  J2PlaneStress material;
+  int points_per_element;
+  std::vector<Cps8Geometry> geometry;
+  std::vector<PointState> committed, trial;
+  std::unique_ptr<SparseSystem> system;
+  Eigen::VectorXd mass, u_n, u_last;
+  bool trial_fresh = false;
+  std::vector<Eigen::Vector2d> x;
+  std::vector<ContactContribution> contributions;
+  std::unique_ptr<SurfaceContact> surface;
+  std::vector<RigidFace> faces;
+  std::vector<double> outer_k, outer_area;  // per local outer node (all rings alike)
+  std::vector<double> omega2_ref, edge_ref;  // element eigenvalue bound at the reference
+  ChainContactForces forces;
+  std::vector<std::pair<int, double>> pressure;
+  double face_near_omega2 = 0, surface_near_omega2 = 0;
+  int face_near_node = -1, surface_near_node = -1;
+  std::vector<std::array<double, 4>> ring_box;  // per ring: outer node box (lo x, hi x, lo y, hi y)
+  SystemEvaluation scratch;
+
+  explicit Impl(const ChainInput& in)
+      : topo(make_chain_topology(in)),
+        material(in.material),
+        points_per_element(in.integration == Integration::Reduced ? 4 : 9) {}
+};
+
+ChainModel::ChainModel(const ChainInput& input) : input_(input) {
+  impl_ = std::make_unique<Impl>(input);
+  Impl& m = *impl_;
+  mesh_ = m.topo.mesh;
+  const int nodes = static_cast<int>(mesh_.nodes.size());
+  const int ne = static_cast<int>(mesh_.elements.size());
+  m.u_n = Eigen::VectorXd::Zero(2 * nodes);
+  m.u_last = m.u_n;
+  m.x.resize(nodes);
+  m.committed.assign(static_cast<std::size_t>(ne) * m.points_per_element, PointState{});
+  m.trial = m.committed;
+  m.system = std::make_unique<SparseSystem>(nodes, m.topo.fixed_dofs, mesh_.elements);
+  m.ring_box.resize(input.rings);
+
+  // Lumped mass: HRZ per element (a half ring's elements are the half ring); rigid bodies
+  // carry the model's share of their mass (half in a half model), on both dofs.
+  const double share = 1.0 / symmetry_factor();
+  m.mass = Eigen::VectorXd::Zero(2 * nodes);
+  m.geometry.resize(ne);
+  m.omega2_ref.resize(ne);
+  m.edge_ref.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    ElementCoords xe;
+    for (int a = 0; a < 8; ++a) xe.row(a) = mesh_.nodes[mesh_.elements[e][a]].transpose();
+    const auto me = hrz_lumped_mass(xe, input.density_kg_m3, input.ring.width_m);
+    for (int a = 0; a < 8; ++a) {
+      m.mass(2 * mesh_.elements[e][a]) += me[a];
+      m.mass(2 * mesh_.elements[e][a] + 1) += me[a];
+    }
+    // Element eigenvalue bound (issue 4 item 5): largest λ of K_e v = λ M_e v with the
+    // elastic tangent of the unstressed element and its HRZ mass; ω_max² of the assembled
+    // system is at most the largest element λ (Rayleigh quotient, M = Σ M_e).
+    m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
+    Cps8Output out;
+    double du[16] = {};
+    std::vector<PointState> c(m.points_per_element), t(m.points_per_element);
+    cps8_evaluate(m.geometry[e], du, c.data(), t.data(), m.material, true, out);
+    Eigen::Matrix<double, 16, 1> s;
+    for (int k = 0; k < 16; ++k) s(k) = 1.0 / std::sqrt(me[k / 2]);
+    const ElementMatrix a = s.asDiagonal() * out.tangent * s.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<ElementMatrix> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
+    m.omega2_ref[e] = eig.eigenvalues().maxCoeff();
+    m.edge_ref[e] = shortest_edge(mesh_.elements[e], mesh_.nodes);
+  }
+  m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
+  for (int p : mesh_.plate_nodes) m.mass(2 * p) = m.mass(2 * p + 1) = share * input.plate_mass_kg;
+
+  // Contact: penalty per outer node as RingContact (penalty_scale · E · w · L / h).
+  const RingMesh& r = m.topo.ring;
+  const double k_scale = input.contact.penalty_scale * input.material.youngs_modulus_pa * input.ring.width_m / r.element_depth;
+  for (double w : r.outer_weight) {
+    m.outer_k.push_back(k_scale * w);
+    m.outer_area.push_back(w * input.ring.width_m);
+  }
+  std::vector<int> all_rings(input.rings);
+  for (int i = 0; i < input.rings; ++i) all_rings[i] = i;
+  m.faces.push_back({RigidFace::Kind::Impactor, mesh_.impactor_node, mesh_.nodes[mesh_.impactor_node].y(), -1.0, all_rings});
+  if (input.fixed_target) m.faces.push_back({RigidFace::Kind::Target, -1, m.topo.target_y, 1.0, all_rings});
+  for (std::size_t k = 0; k < mesh_.plate_nodes.size(); ++k) {
+    const int node = mesh_.plate_nodes[k];
+    const double yc = mesh_.nodes[node].y(), half = m.topo.plate_half_thickness;
+    std::vector<int> above, below;
+    for (int i = 0; i < input.rings; ++i) (i <= static_cast<int>(k) ? above : below).push_back(i);
+    m.faces.push_back({RigidFace::Kind::Plate, node, yc + half, 1.0, above});
+    m.faces.push_back({RigidFace::Kind::Plate, node, yc - half, -1.0, below});
+  }
+  std::vector<ContactPass> passes;
+  for (int i = 0; i < input.rings; ++i)
+    for (int j = 0; j < input.rings; ++j)
+      if (i != j)
+        passes.push_back(outer_pass(r, m.topo.ring_node[i], i, m.topo.ring_node[j], j, k_scale, input.ring.width_m,
+                                    input.contact.smoothing));
+  if (input.contact.self_contact)
+    for (int i = 0; i < input.rings; ++i)
+      for (auto& p : inner_wall_passes(r, m.topo.ring_node[i], i, k_scale, input.ring.width_m, input.contact.smoothing,
+                                       input.contact.self_contact_min_separation_rad,
+                                       input.contact.self_contact_two_pass))
+        passes.push_back(std::move(p));
+  m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth);
+  m.surface->set_mass(m.mass);
+  m.contributions.reserve(256);
+  m.pressure.reserve(256);
+}
+
+ChainModel::~ChainModel() = default;
+
+int ChainModel::dofs() const { return 2 * static_cast<int>(mesh_.nodes.size()); }
+const std::vector<int>& ChainModel::fixed_dofs() const { return impl_->topo.fixed_dofs; }
+const Eigen::VectorXd& ChainModel::lumped_mass() const { return impl_->mass; }
+SparseSystem& ChainModel::tangent_system() { return *impl_->system; }
+const ChainContactForces& ChainModel::contact_forces() const { return impl_->forces; }
+
+Eigen::VectorXd ChainModel::initial_velocity() const {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(dofs());
+  v(impactor_dof()) = -input_.impactor_velocity_m_s;  // the chain lies below (−y)
+  return v;
+}
+
+void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) {
+  Impl& m = *impl_;
+  if (u.size() != dofs()) throw std::invalid_argument(fmt::format("ChainModel::evaluate: u has {} values, expected {}", u.size(), dofs()));
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t nn = mesh_.nodes.size();
+  for (std::size_t i = 0; i < nn; ++i) m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+
+  // --- contact -------------------------------------------------------------------------
+  m.contributions.clear();
+  m.pressure.clear();
+  ChainContactForces& cf = m.forces;
+  cf = ChainContactForces{};
+  double contact_energy = 0;
+  const double depth = m.topo.ring.element_depth;
+  for (int i = 0; i < input_.rings; ++i) {
+    auto& b = m.ring_box[i];
+    b = {1e300, -1e300, 1e300, -1e300};
+    for (int n : mesh_.ring_outer_nodes[i]) {
+      b[0] = std::min(b[0], m.x[n].x()); b[1] = std::max(b[1], m.x[n].x());
+      b[2] = std::min(b[2], m.x[n].y()); b[3] = std::max(b[3], m.x[n].y());
+    }
+  }
+  for (int i = 0; i < input_.rings; ++i)
+    for (int j = i + 1; j < input_.rings; ++j) {
+      const auto &a = m.ring_box[i], &b = m.ring_box[j];
+      if (a[0] - depth <= b[1] && b[0] - depth <= a[1] && a[2] - depth <= b[3] && b[2] - depth <= a[3]) ++cf.pairs_checked;
+    }
+  m.face_near_omega2 = 0;
+  m.face_near_node = -1;
+  const RingMesh& r = m.topo.ring;
+  for (const RigidFace& face : m.faces) {
+    const double y_face = face.y_ref + (face.body_node >= 0 ? u(2 * face.body_node + 1) : 0.0);
+    const double inv_body = face.body_node >= 0 ? 1.0 / m.mass(2 * face.body_node + 1) : 0.0;
+    for (int ring : face.rings) {
+      const auto& b = m.ring_box[ring];
+      // Broad phase: the ring's outer box against the face, one element depth of margin.
+      if (face.dir > 0 ? b[2] > y_face + depth : b[3] < y_face - depth) continue;
+      const auto& map = m.topo.ring_node[ring];
+      for (std::size_t i = 0; i < r.outer_nodes.size(); ++i) {
+        const int node = map[r.outer_nodes[i]];
+        const double gap = face.dir * (m.x[node].y() - y_face);
+        if (gap >= depth) continue;
+        const double k = m.outer_k[i];
+        const double w2 = k * (1.0 / m.mass(2 * node + 1) + inv_body);
+        if (w2 > m.face_near_omega2) { m.face_near_omega2 = w2; m.face_near_node = node; }
+        if (gap >= 0) continue;
+        // Energy ½ k g²: ∂/∂y_s = k g dir, ∂/∂y_face = −k g dir.
+        ContactContribution& c = m.contributions.emplace_back();
+        c.nodes[0] = node;
+        c.force(1) = k * gap * face.dir;
+        if (face.body_node >= 0) {
+          c.count = 2;
+          c.nodes[1] = face.body_node;
+          c.force(3) = -k * gap * face.dir;
+          if (want_tangent) {
+            c.tangent(1, 1) = c.tangent(3, 3) = k;
+            c.tangent(1, 3) = c.tangent(3, 1) = -k;
+          }
+        } else {
+          c.count = 1;
+          if (want_tangent) c.tangent(1, 1) = k;
+        }
+        const double fn = -k * gap;
+        if (face.kind == RigidFace::Kind::Impactor) cf.impactor_n += fn;
+        if (face.kind == RigidFace::Kind::Target) cf.target_n += fn;
+        contact_energy += 0.5 * k * gap * gap;
+        cf.max_penetration_m = std::max(cf.max_penetration_m, -gap);
+        ++cf.active;
+        m.pressure.emplace_back(node, fn / m.outer_area[i]);
+      }
+    }
+  }
+  SurfaceContactState ss;
+  m.surface->evaluate(m.x, want_tangent, m.contributions, &m.pressure, ss);
+  cf.ring_ring_n = ss.ring_ring_force;
+  cf.candidate_pairs = static_cast<long>(m.surface->candidates());
+  cf.list_rebuilds = m.surface->rebuilds();
+  cf.self_n = ss.self_force;
+  cf.active += ss.active;
+  cf.max_penetration_m = std::max(cf.max_penetration_m, ss.max_penetration);
+  contact_energy += ss.energy;
+  m.surface_near_omega2 = ss.near_omega2;
+  m.surface_near_node = ss.near_node;
+  const auto t1 = std::chrono::steady_clock::now();
+
+  // --- elements ------------------------------------------------------------------------
+  if (want_tangent) {
+    // New contact couplings grow the pattern before anything is written into it.
+    for (const auto& c : m.contributions)
+      if (c.count > 1) m.system->ensure_coupled(c.nodes.data(), c.count);
+    m.system->zero();
+  }
+  if (out.force.size() != dofs()) out.force.resize(dofs());
+  out.force.setZero();
+  double elastic = 0, plastic = 0;
+  Cps8Output eo;
+  double ue[16];
+  const int ppe = m.points_per_element;
+  for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
+    const auto& conn = mesh_.elements[e];
+    for (int a = 0; a < 8; ++a) {
+      ue[2 * a] = u(2 * conn[a]) - m.u_n(2 * conn[a]);
+      ue[2 * a + 1] = u(2 * conn[a] + 1) - m.u_n(2 * conn[a] + 1);
+    }
+    const std::size_t p0 = e * ppe;
+    cps8_evaluate(m.geometry[e], ue, &m.committed[p0], &m.trial[p0], m.material, want_tangent, eo);
+    for (int a = 0; a < 8; ++a) {
+      out.force(2 * conn[a]) += eo.force(2 * a);
+      out.force(2 * conn[a] + 1) += eo.force(2 * a + 1);
+    }
+    elastic += eo.elastic_energy;
+    plastic += eo.plastic_work;
+    if (want_tangent) m.system->add_element(static_cast<int>(e), eo.tangent.data());
+  }
+  for (const auto& c : m.contributions) {
+    for (int a = 0; a < c.count; ++a) {
+      out.force(2 * c.nodes[a]) += c.force(2 * a);
+      out.force(2 * c.nodes[a] + 1) += c.force(2 * a + 1);
+    }
+    if (want_tangent) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
+  }
+  out.elastic_energy = elastic;
+  out.plastic_work = plastic;
+  out.contact_energy = contact_energy;
+  out.contact_time_s = std::chrono::duration<double>(t1 - t0).count();
+  m.u_last = u;
+  m.trial_fresh = true;
+}
+
+void ChainModel::commit(const Eigen::VectorXd& u) {
+  Impl& m = *impl_;
+  // The trial states must be those of u (a driver may have evaluated elsewhere since, e.g.
+  // the half-step residual of thesis §3.5).
+  if (!m.trial_fresh || m.u_last.size() != u.size() || m.u_last != u) evaluate(u, false, m.scratch);
+  std::swap(m.committed, m.trial);
+  m.trial_fresh = false;
+  m.u_n = u;
+  // The next increment is described on this configuration (kinematics.hpp).
+  const double width = input_.ring.width_m;
+  for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
+    ElementCoords xe;
+    for (int a = 0; a < 8; ++a) {
+      const int n = mesh_.elements[e][a];
+      xe(a, 0) = mesh_.nodes[n].x() + u(2 * n);
+      xe(a, 1) = mesh_.nodes[n].y() + u(2 * n + 1);
+    }
+    try {
+      m.geometry[e] = cps8_geometry(xe, input_.integration, width);
+    } catch (const std::invalid_argument& err) {
+      throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
+    }
+  }
+}
+
+StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
+  const Impl& m = *impl_;
+  // Elements: the reference bound scaled with the shortest current edge (λ ∝ 1/h² for a
+  // similar shape; the elastic tangent bounds the elastic-plastic one).
+  std::vector<Eigen::Vector2d> x(mesh_.nodes.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+  double el = 0;
+  int worst = -1;
+  for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
+    const double h = shortest_edge(mesh_.elements[e], x);
+    if (!(h > 0)) throw std::runtime_error(fmt::format("stable step: element {} has collapsed", e + 1));
+    const double ratio = m.edge_ref[e] / h;
+    const double w2 = m.omega2_ref[e] * ratio * ratio;
+    if (w2 > el) { el = w2; worst = static_cast<int>(e); }
+  }
+  // Contact springs of the last evaluation within one element depth (active or about to
+  // be): they load the same nodal masses, so their frequency² adds to the elements'.
+  const bool surface_wins = m.surface_near_omega2 > m.face_near_omega2;
+  const double contact = std::max(m.surface_near_omega2, m.face_near_omega2);
+  const int contact_node = surface_wins ? m.surface_near_node : m.face_near_node;
+  StableStep s;
+  s.step_s = 2.0 / std::sqrt(el + contact);
+  if (contact > el)
+    s.limited_by = fmt::format("contact penalty, node {}", contact_node + 1);
+  else
+    s.limited_by = fmt::format("element {} (ring {})", worst + 1, mesh_.element_ring[worst] + 1);
+  return s;
+}
+
+std::vector<double> ChainModel::contact_pressure() const {
+  std::vector<double> p(mesh_.nodes.size(), 0.0);
+  for (const auto& [node, value] : impl_->pressure) p[node] += value;
+  return p;
+}
+
+double ChainModel::ring_extent(int ring, const Eigen::VectorXd& u) const {
+  if (ring < 0 || ring >= input_.rings) throw std::invalid_argument(fmt::format("ring_extent: no ring {}", ring));
+  double lo = 1e300, hi = -1e300;
+  for (int n : mesh_.ring_outer_nodes[ring]) {
+    const double y = mesh_.nodes[n].y() + u(2 * n + 1);
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
+  }
+  return hi - lo;
+}
+
+std::vector<Cps8Fields> ChainModel::element_fields() const {
+  const Impl& m = *impl_;
+  std::vector<Cps8Fields> out;
+  out.reserve(mesh_.elements.size());
+  for (std::size_t e = 0; e < mesh_.elements.size(); ++e)
+    out.push_back(cps8_fields(&m.committed[e * m.points_per_element], m.points_per_element));
+  return out;
+}
+
+std::vector<double> ChainModel::max_peeq_per_ring() const {
+  const Impl& m = *impl_;
+  std::vector<double> out(input_.rings, 0.0);
+  for (std::size_t e = 0; e < mesh_.elements.size(); ++e)
+    for (int p = 0; p < m.points_per_element; ++p)
+      out[mesh_.element_ring[e]] = std::max(out[mesh_.element_ring[e]], m.committed[e * m.points_per_element + p].peeq);
+  return out;
+}
+
+}  // namespace ringcrush::fe

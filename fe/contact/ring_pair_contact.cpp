@@ -1,0 +1,400 @@
+#include "fe/contact/ring_pair_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace ringcrush::fe {
+
+namespace {
+
+// Position, tangent and curvature vector of a piece at f (coords: slave first), through the
+// geometric polynomial x(f) = A0 + A1 f + A2 f² + A3 f³.
+struct Cubic {
+  double a[4][2];
+  Cubic(const PiecePolynomial& p, const double* xy) {
+    for (int q = 0; q < 4; ++q) {
+      a[q][0] = a[q][1] = 0;
+      for (int k = 0; k < p.count; ++k) {
+        a[q][0] += p.a[k][q] * xy[2 + 2 * k];
+        a[q][1] += p.a[k][q] * xy[3 + 2 * k];
+      }
+    }
+  }
+  void at(double f, double* pos, double* tan, double* curv) const {
+    for (int d = 0; d < 2; ++d) {
+      pos[d] = a[0][d] + f * (a[1][d] + f * (a[2][d] + f * a[3][d]));
+      tan[d] = a[1][d] + f * (2 * a[2][d] + 3 * f * a[3][d]);
+      curv[d] = 2 * a[2][d] + 6 * f * a[3][d];
+    }
+  }
+};
+
+// A pieces chain from segments; closed: the last segment joins the first (full ring).
+// Returns the pieces and the symmetric-end flags.
+void add_chain(const std::vector<SurfaceSegment>& chain, bool closed, bool lo_symmetric, bool hi_symmetric,
+               double smoothing, ContactPass& p) {
+  if (chain.empty()) return;
+  std::vector<CurvePiece> pieces;
+  if (closed && smoothing > 0) {
+    // Smooth the wrap junction too: chain + first segment again, then the duplicate of the
+    // first segment is dropped and the first piece starts after the junction.
+    std::vector<SurfaceSegment> loop(chain);
+    loop.push_back(chain.front());
+    pieces = smoothed_chain(loop, smoothing);
+    pieces.pop_back();
+    pieces.front().lo = -1 + 2 * smoothing;
+  } else {
+    pieces = smoothed_chain(chain, smoothing);
+  }
+  for (std::size_t q = 0; q < pieces.size(); ++q) {
+    unsigned char flag = 0;
+    if (!closed && q == 0 && lo_symmetric) flag |= 1;
+    if (!closed && q + 1 == pieces.size() && hi_symmetric) flag |= 2;
+    p.pieces.push_back(pieces[q]);
+    p.symmetric_end.push_back(flag);
+  }
+}
+
+double wrapped_angle(double a, double b) {
+  const double pi = std::numbers::pi;
+  double d = std::abs(a - b);
+  d = std::fmod(d, 2 * pi);
+  return std::min(d, 2 * pi - d);
+}
+
+}  // namespace
+
+PiecePolynomial::PiecePolynomial(const CurvePiece& piece) : count(piece.count), lo(piece.lo), hi(piece.hi) {
+  // c(0) = a0, c'(0) = a1, c''(0) = 2 a2, c''(1) − c''(0) = 6 a3.
+  double c0[5], d0[5], dd0[5], c1[5], d1[5], dd1[5];
+  piece.coefficients(0.0, c0, d0, dd0);
+  piece.coefficients(1.0, c1, d1, dd1);
+  for (int k = 0; k < count; ++k) {
+    a[k][0] = c0[k];
+    a[k][1] = d0[k];
+    a[k][2] = 0.5 * dd0[k];
+    a[k][3] = (dd1[k] - dd0[k]) / 6.0;
+  }
+}
+
+bool surface_gap(const PiecePolynomial& p, const double* xy, unsigned char symmetric_end, bool strict, double& f,
+                 double& gap) {
+  const Cubic cubic(p, xy);
+  // strict = false: the piece's polynomial continues past its ends (it matches the C¹
+  // neighbour to second order), for finite differences about an accepted closest point.
+  const double lo = strict ? p.lo : p.lo - 0.5, hi = strict ? p.hi : p.hi + 0.5;
+  const double xs = xy[0], ys = xy[1];
+  double pos[2], tan[2], curv[2];
+  if (!(f >= lo && f <= hi)) {
+    double best = 1e300;
+    for (int s = 0; s <= 4; ++s) {
+      const double t = p.lo + (p.hi - p.lo) * s / 4.0;
+      cubic.at(t, pos, tan, curv);
+      const double d2 = (pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys);
+      if (d2 < best) { best = d2; f = t; }
+    }
+  }
+  // Newton on (x(f) − x_s)·x'(f) = 0.
+  for (int it = 0; it < 30; ++it) {
+    cubic.at(f, pos, tan, curv);
+    const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
+    const double dr = tan[0] * tan[0] + tan[1] * tan[1] + (pos[0] - xs) * curv[0] + (pos[1] - ys) * curv[1];
+    const double step = dr > 0 ? -r / dr : (r > 0 ? -0.25 : 0.25) * (p.hi - p.lo);
+    const double next = std::clamp(f + step, lo, hi);
+    const double moved = std::abs(next - f);
+    f = next;
+    if (moved < 1e-14) break;
+  }
+  cubic.at(f, pos, tan, curv);
+  const double tl = std::hypot(tan[0], tan[1]);
+  if (!(tl > 0)) return false;
+  const double nx = -tan[1] / tl, ny = tan[0] / tl;
+  gap = (xs - pos[0]) * nx + (ys - pos[1]) * ny;
+  if (!strict) return true;
+  const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
+  const double scale = tl * std::hypot(pos[0] - xs, pos[1] - ys);
+  const double tol = 1e-9 * (p.hi - p.lo);
+  if (f <= p.lo + tol && r > 1e-9 * scale && !(symmetric_end & 1)) return false;  // minimum before the piece
+  if (f >= p.hi - tol && r < -1e-9 * scale && !(symmetric_end & 2)) return false;  // minimum after it
+  return true;
+}
+
+void surface_force(const PiecePolynomial& p, const double* xy, double k, double f, double gap, double* force) {
+  const int n = 2 + 2 * p.count;
+  std::fill(force, force + n, 0.0);
+  if (!(gap < 0)) return;
+  double pos[2], tan[2], curv[2];
+  Cubic(p, xy).at(f, pos, tan, curv);
+  const double tl = std::hypot(tan[0], tan[1]);
+  const double nx = -tan[1] / tl, ny = tan[0] / tl;
+  // ∂(½ k g²)/∂x_s = k g n and ∂/∂x_a = −k g c_a n: the terms through f and n vanish at the
+  // closest point ((x_s − x)·x' = 0, n·∂n = 0). Σ over all nodes is zero: action = reaction.
+  double c[5];
+  for (int a = 0; a < p.count; ++a) c[a] = p.a[a][0] + f * (p.a[a][1] + f * (p.a[a][2] + f * p.a[a][3]));
+  force[0] = k * gap * nx;
+  force[1] = k * gap * ny;
+  for (int a = 0; a < p.count; ++a) {
+    force[2 + 2 * a] = -k * gap * c[a] * nx;
+    force[3 + 2 * a] = -k * gap * c[a] * ny;
+  }
+}
+
+ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, int slave,
+                       const std::vector<int>& master_map, int master, double k_scale, double width,
+                       double smoothing) {
+  ContactPass p;
+  p.self = false;
+  p.slave_ring = slave;
+  p.master_ring = master;
+  // Slaves: the slave ring's outer nodes that are not also master nodes (a welded node lies
+  // on both surfaces by construction).
+  std::vector<int> master_nodes(master_map);
+  std::sort(master_nodes.begin(), master_nodes.end());
+  for (std::size_t i = 0; i < ring.outer_nodes.size(); ++i) {
+    const int g = slave_map[ring.outer_nodes[i]];
+    if (std::binary_search(master_nodes.begin(), master_nodes.end(), g)) continue;
+    p.slaves.push_back(g);
+    p.slave_k.push_back(k_scale * ring.outer_weight[i]);
+    p.slave_area.push_back(ring.outer_weight[i] * width);
+  }
+  // Master: the outer edges in clockwise order (reversed), so that the left normal points
+  // out of the ring.
+  const std::size_t columns = ring.outer_nodes.size();
+  const std::size_t segments = ring.half_ring ? (columns - 1) / 2 : columns / 2;
+  std::vector<SurfaceSegment> chain;
+  for (std::size_t s = segments; s-- > 0;) {
+    const int a = master_map[ring.outer_nodes[2 * s]], b = master_map[ring.outer_nodes[2 * s + 1]],
+              c = master_map[ring.outer_nodes[(2 * s + 2) % columns]];
+    chain.push_back({{c, b, a}, -1});
+  }
+  add_chain(chain, !ring.half_ring, ring.half_ring, ring.half_ring, smoothing, p);
+  return p;
+}
+
+std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
+                                           double k_scale, double width, double smoothing,
+                                           double min_separation, bool two_pass) {
+  // Lower (y < 0) and upper (y > 0) halves of the inner wall, reference configuration, as
+  // RingContact does for one ring.
+  auto lower = [](double phi) { return -std::cos(phi) < -1e-12; };
+  auto upper = [](double phi) { return -std::cos(phi) > 1e-12; };
+  const auto& segs = ring.inner_segments;
+  auto make = [&](auto slave_pred, auto master_pred) {
+    ContactPass p;
+    p.self = true;
+    p.slave_ring = p.master_ring = ring_index;
+    p.min_separation = min_separation;
+    for (std::size_t i = 0; i < ring.inner_nodes.size(); ++i) {
+      const int node = ring.inner_nodes[i];
+      if (!slave_pred(ring.node_angle[node])) continue;
+      p.slaves.push_back(map[node]);
+      p.slave_k.push_back(k_scale * ring.inner_weight[i]);
+      p.slave_area.push_back(ring.inner_weight[i] * width);
+      p.slave_angle.push_back(ring.node_angle[node]);
+    }
+    // Maximal runs of consecutive segments whose middle node is in the master half.
+    const std::size_t n = segs.size();
+    auto in_set = [&](std::size_t s) { return master_pred(ring.node_angle[segs[s].nodes[1]]); };
+    std::size_t start = 0;
+    if (!ring.half_ring)
+      for (std::size_t s = 0; s < n; ++s)
+        if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
+    std::vector<std::vector<SurfaceSegment>> runs;
+    std::vector<SurfaceSegment> cur;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t s = (start + i) % n;
+      if (in_set(s)) cur.push_back(segs[s]);
+      else if (!cur.empty()) { runs.push_back(cur); cur.clear(); }
+    }
+    if (!cur.empty()) runs.push_back(cur);
+    for (auto& run : runs) {
+      const bool lo_sym = ring.half_ring && std::abs(ring.nodes[run.front().nodes[0]].x()) < 1e-14;
+      const bool hi_sym = ring.half_ring && std::abs(ring.nodes[run.back().nodes[2]].x()) < 1e-14;
+      const std::size_t first = p.pieces.size();
+      add_chain(run, false, lo_sym, hi_sym, smoothing, p);
+      for (std::size_t q = first; q < p.pieces.size(); ++q) {
+        std::array<double, 5> ang{};
+        for (int a = 0; a < p.pieces[q].count; ++a) {
+          ang[a] = ring.node_angle[p.pieces[q].nodes[a]];
+          p.pieces[q].nodes[a] = map[p.pieces[q].nodes[a]];
+        }
+        p.piece_angle.push_back(ang);
+      }
+    }
+    return p;
+  };
+  std::vector<ContactPass> out;
+  out.push_back(make(lower, upper));
+  if (two_pass) out.push_back(make(upper, lower));
+  return out;
+}
+
+SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
+    : passes_(std::move(passes)), depth_(depth), skin_(0.5 * depth) {
+  if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
+  for (const auto& p : passes_) {
+    for (int s : p.slaves) tracked_.push_back(s);
+    for (const auto& q : p.pieces)
+      for (int a = 0; a < q.count; ++a) tracked_.push_back(q.nodes[a]);
+  }
+  std::sort(tracked_.begin(), tracked_.end());
+  tracked_.erase(std::unique(tracked_.begin(), tracked_.end()), tracked_.end());
+  x_build_.resize(tracked_.size());
+  start_.resize(passes_.size());
+  for (const auto& p : passes_) {
+    auto& polys = poly_.emplace_back();
+    for (const auto& q : p.pieces) polys.emplace_back(q);
+  }
+  slave_omega2_.resize(passes_.size());
+  for (std::size_t p = 0; p < passes_.size(); ++p) slave_omega2_[p].assign(passes_[p].slaves.size(), 0.0);
+}
+
+void SurfaceContact::set_mass(const Eigen::VectorXd& mass) {
+  for (std::size_t p = 0; p < passes_.size(); ++p) {
+    const auto& pass = passes_[p];
+    double inv_master = 0;
+    for (const auto& q : pass.pieces)
+      for (int a = 0; a < q.count; ++a) inv_master = std::max(inv_master, 1.0 / mass(2 * q.nodes[a] + 1));
+    // Rank-one contact element k G Gᵀ, G = [n; −c_a n]: its frequency² over the lumped mass
+    // is k (1/m_s + Σ c_a²/m_a); Σ c_a² ≤ 1.25 on the quadratic and Hermite pieces.
+    for (std::size_t s = 0; s < pass.slaves.size(); ++s)
+      slave_omega2_[p][s] = pass.slave_k[s] * (1.0 / mass(2 * pass.slaves[s] + 1) + 1.25 * inv_master);
+  }
+}
+
+void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
+  ++rebuilds_;
+  built_ = true;
+  for (std::size_t i = 0; i < tracked_.size(); ++i) x_build_[i] = x[tracked_[i]];
+  candidate_piece_.clear();
+  std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
+  for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
+    const ContactPass& p = passes_[pi];
+    auto& start = start_[pi];
+    start.assign(p.slaves.size() + 1, static_cast<int>(candidate_piece_.size()));
+    box.resize(p.pieces.size());
+    double m_lo_x = 1e300, m_hi_x = -1e300, m_lo_y = 1e300, m_hi_y = -1e300;
+    for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+      double lx = 1e300, hx = -1e300, ly = 1e300, hy = -1e300;
+      for (int a = 0; a < p.pieces[q].count; ++a) {
+        const auto& v = x[p.pieces[q].nodes[a]];
+        lx = std::min(lx, v.x()); hx = std::max(hx, v.x());
+        ly = std::min(ly, v.y()); hy = std::max(hy, v.y());
+      }
+      // Wider than the evaluation pad by 3 skins: nodes move < skin until the next build.
+      const double pad = depth_ + 0.25 * std::max(hx - lx, hy - ly) + 3 * skin_;
+      box[q] = {lx - pad, hx + pad, ly - pad, hy + pad};
+      m_lo_x = std::min(m_lo_x, box[q][0]); m_hi_x = std::max(m_hi_x, box[q][1]);
+      m_lo_y = std::min(m_lo_y, box[q][2]); m_hi_y = std::max(m_hi_y, box[q][3]);
+    }
+    for (std::size_t s = 0; s < p.slaves.size(); ++s) {
+      start[s] = static_cast<int>(candidate_piece_.size());
+      const auto& xs = x[p.slaves[s]];
+      if (xs.x() < m_lo_x || xs.x() > m_hi_x || xs.y() < m_lo_y || xs.y() > m_hi_y) continue;
+      for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+        const auto& b = box[q];
+        if (xs.x() < b[0] || xs.x() > b[1] || xs.y() < b[2] || xs.y() > b[3]) continue;
+        if (p.self) {
+          bool joined = false;
+          for (int a = 0; a < p.pieces[q].count && !joined; ++a)
+            joined = wrapped_angle(p.slave_angle[s], p.piece_angle[q][a]) < p.min_separation;
+          if (joined) continue;
+        }
+        candidate_piece_.push_back(static_cast<int>(q));
+      }
+    }
+    start[p.slaves.size()] = static_cast<int>(candidate_piece_.size());
+  }
+}
+
+void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
+                              std::vector<ContactContribution>& out, std::vector<std::pair<int, double>>* pressure,
+                              SurfaceContactState& st) {
+  st = SurfaceContactState{};
+  bool stale = !built_;
+  const double skin2 = skin_ * skin_;
+  for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
+    stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
+  if (stale) rebuild(x);
+  double xy[12];
+  for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
+    const ContactPass& p = passes_[pi];
+    const auto& start = start_[pi];
+    for (std::size_t s = 0; s < p.slaves.size(); ++s) {
+      if (start[s] == start[s + 1]) continue;
+      const int node = p.slaves[s];
+      const Eigen::Vector2d& xs = x[node];
+      int best = -1;
+      double best_abs = depth_, best_f = 0, best_gap = 0;
+      for (int c = start[s]; c < start[s + 1]; ++c) {
+        const int q = candidate_piece_[c];
+        const CurvePiece& piece = p.pieces[q];
+        double lx = 1e300, hx = -1e300, ly = 1e300, hy = -1e300;
+        for (int a = 0; a < piece.count; ++a) {
+          const auto& v = x[piece.nodes[a]];
+          lx = std::min(lx, v.x()); hx = std::max(hx, v.x());
+          ly = std::min(ly, v.y()); hy = std::max(hy, v.y());
+        }
+        const double pad = depth_ + 0.25 * std::max(hx - lx, hy - ly);
+        if (xs.x() < lx - pad || xs.x() > hx + pad || xs.y() < ly - pad || xs.y() > hy + pad) continue;
+        xy[0] = xs.x(); xy[1] = xs.y();
+        for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
+        double f = piece.lo - 1.0, gap = 0;
+        if (!surface_gap(poly_[pi][q], xy, p.symmetric_end[q], true, f, gap)) continue;
+        // The closest owned piece decides (a node behind the wall of another piece is not
+        // "penetrating" it).
+        if (std::abs(gap) < best_abs) { best = q; best_abs = std::abs(gap); best_f = f; best_gap = gap; }
+      }
+      if (best < 0) continue;
+      if (slave_omega2_[pi][s] > st.near_omega2) { st.near_omega2 = slave_omega2_[pi][s]; st.near_node = node; }
+      if (!(best_gap < 0)) continue;
+      const CurvePiece& piece = p.pieces[best];
+      const PiecePolynomial& poly = poly_[pi][best];
+      const double k = p.slave_k[s];
+      ContactContribution& c = out.emplace_back();
+      c.count = 1 + piece.count;
+      c.nodes[0] = node;
+      xy[0] = xs.x(); xy[1] = xs.y();
+      for (int a = 0; a < piece.count; ++a) {
+        c.nodes[1 + a] = piece.nodes[a];
+        xy[2 + 2 * a] = x[piece.nodes[a]].x();
+        xy[3 + 2 * a] = x[piece.nodes[a]].y();
+      }
+      c.force.setZero();
+      surface_force(poly, xy, k, best_f, best_gap, c.force.data());
+      if (want_tangent) {
+        // Central differences of the exact local force (12×12 at most), symmetrised: the
+        // force is the gradient of the penalty energy.
+        const int n = 2 * c.count;
+        const double h = 1e-7 * depth_;
+        double fp[12], fm[12];
+        c.tangent.setZero();
+        for (int j = 0; j < n; ++j) {
+          const double keep = xy[j];
+          double ff = best_f, gg = 0;
+          xy[j] = keep + h;
+          surface_gap(poly, xy, 0, false, ff, gg);
+          surface_force(poly, xy, k, ff, gg, fp);
+          ff = best_f;
+          xy[j] = keep - h;
+          surface_gap(poly, xy, 0, false, ff, gg);
+          surface_force(poly, xy, k, ff, gg, fm);
+          xy[j] = keep;
+          for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * h);
+        }
+        const Eigen::Matrix<double, 12, 12> t = c.tangent;
+        c.tangent = 0.5 * (t + t.transpose());
+      }
+      const double fn = -k * best_gap;
+      (p.self ? st.self_force : st.ring_ring_force) += fn;
+      st.energy += 0.5 * k * best_gap * best_gap;
+      st.max_penetration = std::max(st.max_penetration, -best_gap);
+      ++st.active;
+      if (pressure) pressure->emplace_back(node, fn / p.slave_area[s]);
+    }
+  }
+}
+
+}  // namespace ringcrush::fe

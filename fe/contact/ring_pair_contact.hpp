@@ -1,0 +1,134 @@
+// Node-to-surface contact between deformable surfaces of a ring chain (issue 4 item 2;
+// thesis §3.6.3; DESIGN.md "Contact"): ring i's outer surface against ring j's, and every
+// ring's inner wall against itself. Frictionless penalty, energy ½ k g² for g < 0, so the
+// force is the gradient of a potential (action = reaction, momentum conserved) and the
+// tangent symmetric. The master surfaces are the Hermite-smoothed quadratic edges of
+// smoothed_surface.hpp (C¹, so the force varies continuously as a node slides over a
+// junction).
+//
+// Symmetry (no master/slave bias): ring↔ring contact is two passes, i's nodes on j's surface
+// and j's nodes on i's, with the same penalty rule on both sides; the inner wall is two
+// passes as RingContact (lower half on upper and upper on lower).
+//
+// Broad phase (pairs that cannot touch cost nothing): a Verlet candidate list of
+// (slave node, master piece) pairs, built from padded bounding boxes with a skin and rebuilt
+// only when some surface node has moved more than the skin since the last build. Every
+// evaluation applies the exact box test to the listed pairs, so the result does not depend
+// on when the list was built: the list is a superset of what the test can accept. A pass
+// whose rings' padded boxes do not overlap (ring i and ring i+3, or ring i and i+2 before a
+// wrap-around) adds nothing to the list.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "fe/contact/contact_element.hpp"
+#include "fe/contact/smoothed_surface.hpp"
+#include "fe/mesh/ring_mesh.hpp"
+
+namespace ringcrush::fe {
+
+// One set of slave nodes against one master surface (global node ids).
+struct ContactPass {
+  bool self = false;            // inner wall against itself (else outer ring↔ring)
+  int slave_ring = 0, master_ring = 0;
+  std::vector<int> slaves;
+  std::vector<double> slave_k;     // penalty stiffness per slave (N/m)
+  std::vector<double> slave_area;  // tributary area per slave (pressure output)
+  // Master pieces; the left normal of x'(f) points out of the master material, toward the
+  // side the slaves come from.
+  std::vector<CurvePiece> pieces;
+  // Per piece: bit 0 = its lo end, bit 1 = its hi end lies on the x = 0 symmetry plane of a
+  // half ring. There the surface continues as its mirror image, so a projection onto that
+  // end is the closest point of the whole surface and is accepted.
+  std::vector<unsigned char> symmetric_end;
+  // Self contact: reference angle of each slave and piece node; pairs closer than
+  // min_separation along the wall are joined by the wall and never paired.
+  std::vector<double> slave_angle;
+  std::vector<std::array<double, 5>> piece_angle;
+  double min_separation = 0;
+};
+
+// Passes of one ring's outer surface (ring `slave`) against another's (ring `master`).
+// map_*: local → global node of each ring; k_scale: penalty per unit tributary length.
+ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, int slave,
+                       const std::vector<int>& master_map, int master, double k_scale, double width,
+                       double smoothing);
+// The two inner-wall passes of one ring (as RingContact: lower half against upper and back).
+std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
+                                           double k_scale, double width, double smoothing,
+                                           double min_separation, bool two_pass);
+
+// A piece's shape functions as cubic polynomials in f, c_k(f) = Σ_p a[k][p] f^p (exact:
+// quadratic edges and Hermite junctions are at most cubic). Precomputed once, so the closest-
+// point Newton iteration costs a few flops per step.
+struct PiecePolynomial {
+  int count = 3;
+  double lo = -1, hi = 1;
+  double a[5][4] = {};
+  PiecePolynomial() = default;
+  explicit PiecePolynomial(const CurvePiece& piece);
+};
+
+struct SurfaceContactState {
+  double ring_ring_force = 0;   // Σ |normal force| of ring↔ring contacts
+  double self_force = 0;        // Σ |normal force| of inner-wall contacts
+  double energy = 0;            // penalty energy
+  double max_penetration = 0;
+  int active = 0;
+  // Largest k (1/m_slave + 1.25 max 1/m_master) over slaves within one element depth of a
+  // master surface (the contact spring's frequency bound, stable_step) and its node.
+  double near_omega2 = 0;
+  int near_node = -1;
+};
+
+class SurfaceContact {
+ public:
+  // depth: element size through the wall (largest penetration counted, box padding).
+  SurfaceContact(std::vector<ContactPass> passes, double depth);
+
+  // Mass per dof (lumped) for the frequency bound of the contact springs.
+  void set_mass(const Eigen::VectorXd& mass);
+
+  // x: current coordinates of all nodes. Appends the active contributions; pressure (if not
+  // null) gets (node, contact pressure) of each active slave.
+  void evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent, std::vector<ContactContribution>& out,
+                std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state);
+
+  const std::vector<ContactPass>& passes() const { return passes_; }
+  long rebuilds() const { return rebuilds_; }
+  std::size_t candidates() const { return candidate_piece_.size(); }
+  // Candidate (slave, piece) pairs of one pass in the current list (0 before the first build).
+  std::size_t candidates(std::size_t pass) const {
+    return start_[pass].empty() ? 0 : static_cast<std::size_t>(start_[pass].back() - start_[pass].front());
+  }
+
+ private:
+  void rebuild(const std::vector<Eigen::Vector2d>& x);
+
+  std::vector<ContactPass> passes_;
+  double depth_, skin_;
+  std::vector<int> tracked_;                  // every node of every pass
+  std::vector<Eigen::Vector2d> x_build_;      // their positions at the last build
+  bool built_ = false;
+  long rebuilds_ = 0;
+  // Candidates: pass p, slave s → candidate_piece_[start_[p][s] .. start_[p][s + 1]).
+  std::vector<std::vector<int>> start_;
+  std::vector<int> candidate_piece_;
+  std::vector<std::vector<double>> slave_omega2_;  // per pass, per slave
+  std::vector<std::vector<PiecePolynomial>> poly_; // per pass, per piece
+};
+
+// Gap and force of a slave node against one piece: coords = [x_s, y_s, x_1, y_1, …] (slave
+// then the piece's nodes). strict: the closest point must lie on the piece (or on an end at
+// a symmetry plane, `symmetric_end` bits); otherwise the piece's polynomial is continued
+// past its ends (finite differences of the tangent). On entry f is a start guess (outside
+// [lo, hi] to start from samples); on exit the closest-point parameter. Returns false if no
+// closest point is owned. force (2 + 2·count values) = ∂(½ k g²)/∂coords when g < 0, else 0.
+bool surface_gap(const PiecePolynomial& piece, const double* coords, unsigned char symmetric_end, bool strict,
+                 double& f, double& gap);
+void surface_force(const PiecePolynomial& piece, const double* coords, double k, double f, double gap, double* force);
+
+}  // namespace ringcrush::fe
