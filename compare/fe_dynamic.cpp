@@ -1,5 +1,7 @@
 #include "compare/fe_dynamic.hpp"
 
+#include "compare/run_result_io.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -202,6 +204,13 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
     out.inverted_arc_m.push_back(w.inverted_arc_m);
     out.mode.push_back(mode_of(c, w.wrap_around));
   }
+  // Final outlines for reports (outer surface, x ≥ 0 half of a half model).
+  for (const auto& shape : shapes) {
+    std::vector<std::array<double, 2>> outline;
+    for (const auto& p : shape.points) outline.push_back({p.x(), p.y()});
+    out.ring_outline_m.push_back(std::move(outline));
+  }
+  out.outline_half = r.mesh.half_ring;
   out.events.push_back({r.history.back().time_s, "run_ended", -1, r.end_reason});
 
   const auto& st = r.statistics;
@@ -287,6 +296,7 @@ nlohmann::json fe_dynamic_summary(const Scene& s, const RunResult& run) {
 
 void write_fe_dynamic_outputs(const Scene& s, const fe::DynamicResult& r, const RunResult& run, ResultsDir& out) {
   write_json(out.file("summary.json"), fe_dynamic_summary(s, run));
+  write_json(out.file("run_result.json"), run_result_to_json(run));  // compare/, scripts, cache
   if (s.outputs.history) history_table(run).write(out.file("history.csv"));
   rings_table(s, run).write(out.file("rings.csv"));
   if (s.outputs.plots) {

@@ -1,0 +1,116 @@
+// End-to-end tests of `ringcrush compare` (issue 8 item 2): both models on a small chain,
+// the results directory, the exit status against the verdict, and the FE result cache (a
+// rerun is served from the cache; a changed scene is not).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct CommandRun {
+  int status;
+  std::string output;
+};
+
+CommandRun ringcrush(const std::string& args, const fs::path& cache) {
+  const std::string cmd =
+      "RINGCRUSH_CACHE_DIR='" + cache.string() + "' " + std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("ringcrush_compare_cli_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string read(const fs::path& f) {
+  std::ifstream in(f);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Test 30 (welded) cut down to three coarse rings and 2 ms, hinge level 1: seconds per run.
+fs::path small_scene(const fs::path& dir, double velocity) {
+  std::string text = read(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  auto set = [&text](const std::string& key, const std::string& value) {
+    const std::regex line("(^|\n)" + key + " *=[^\n]*");
+    ASSERT_TRUE(std::regex_search(text, line)) << key;
+    text = std::regex_replace(text, line, "$1" + key + " = " + value, std::regex_constants::format_first_only);
+  };
+  set("count", "3");
+  set("elements_around", "12");
+  set("velocity_m_s", std::to_string(velocity));
+  set("end_time_s", "0.002");
+  set("stop_at_rest", "false");
+  set("level", "1");
+  set("fields", "false");
+  fs::create_directories(dir);
+  const fs::path f = dir / "small_chain.toml";
+  std::ofstream(f) << text;
+  return f;
+}
+}  // namespace
+
+TEST(CompareCli, WritesTheReportAndServesTheFeFromTheCache) {
+  const fs::path dir = scratch("cache"), cache = dir / "cache";
+  const fs::path scene = small_scene(dir, 27.7);
+
+  const CommandRun first = ringcrush("compare " + scene.string() + " -o " + (dir / "a").string(), cache);
+  ASSERT_TRUE(first.status == 0 || first.status == 3) << first.output;
+  for (const char* f : {"summary.json", "report.html", "crush_compare.svg", "fe/summary.json", "fe/history.csv",
+                        "fe/rings.csv", "fe/run_result.json", "hinge/summary.json"})
+    EXPECT_TRUE(fs::exists(dir / "a" / f)) << f;
+  const auto s = nlohmann::json::parse(read(dir / "a" / "summary.json"));
+  EXPECT_EQ(s["model"], "compare");
+  EXPECT_EQ(s["agreement"]["verdicts"].size(), 6u);
+  EXPECT_EQ(s["agreement"]["rings"].size(), 3u);
+  // The exit status is the verdict.
+  EXPECT_EQ(first.status == 0, s["agreement"]["agree"].get<bool>());
+  EXPECT_EQ(first.output.find("from the cache"), std::string::npos);
+  EXPECT_NE(first.output.find("report:"), std::string::npos);
+  EXPECT_EQ(read(dir / "a" / "report.html").find("nan"), std::string::npos);
+
+  const CommandRun second = ringcrush("compare " + scene.string() + " -o " + (dir / "b").string(), cache);
+  EXPECT_EQ(second.status, first.status);
+  EXPECT_NE(second.output.find("from the cache"), std::string::npos) << second.output;
+  const auto s2 = nlohmann::json::parse(read(dir / "b" / "summary.json"));
+  EXPECT_EQ(s2["fe"]["crush_ratio"], s["fe"]["crush_ratio"]);
+  EXPECT_TRUE(s2["fe"]["from_cache"].get<bool>());
+
+  // A changed scene is never served stale.
+  const fs::path changed = small_scene(dir / "changed", 20.0);
+  const CommandRun third = ringcrush("compare " + changed.string() + " -o " + (dir / "c").string(), cache);
+  ASSERT_TRUE(third.status == 0 || third.status == 3) << third.output;
+  EXPECT_EQ(third.output.find("from the cache"), std::string::npos);
+  const auto s3 = nlohmann::json::parse(read(dir / "c" / "summary.json"));
+  EXPECT_NE(s3["fe"]["crush_ratio"], s["fe"]["crush_ratio"]);
+}
+
+TEST(CompareCli, StaticScenesAreRefusedAndWriteNothing) {
+  const fs::path dir = scratch("static");
+  const CommandRun r = ringcrush("compare " + std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/thesis_static.toml -o " +
+                                     (dir / "out").string(),
+                                 dir / "cache");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("dynamic"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
