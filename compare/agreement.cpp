@@ -128,8 +128,11 @@ Agreement assess_agreement(const RunResult& fe, const RunResult& hinge, const Ag
                            a.rings[worst].hinge_crush_ratio);
     a.verdicts.push_back(v);
   }
-  a.verdicts.push_back(relative_verdict("peak_force", "peak impactor force, relative error", peak_force(fe),
-                                        peak_force(hinge), t.peak_force, "kN", 1e-3));
+  a.verdicts.push_back(relative_verdict("peak_force",
+                                        fmt::format("peak impactor force ({:g} ms mean), relative error",
+                                                    1e3 * t.peak_force_window_s),
+                                        peak_mean_force(fe, t.peak_force_window_s),
+                                        peak_mean_force(hinge, t.peak_force_window_s), t.peak_force, "kN", 1e-3));
   a.verdicts.push_back(relative_verdict("mean_force", "mean crushing force, relative error", mean_force(fe),
                                         mean_force(hinge), t.mean_force, "kN", 1e-3));
   a.verdicts.push_back(relative_verdict("absorbed_energy", "energy absorbed (plastic), relative error",
@@ -165,6 +168,7 @@ nlohmann::json to_json(const Agreement& a, const AgreementThresholds& t) {
   j["arrest_time_s"] = {{"fe", time_or_null(a.fe_arrest_time_s)}, {"hinge", time_or_null(a.hinge_arrest_time_s)}};
   j["thresholds"] = {{"crush_ratio", t.crush_ratio},     {"pattern_fraction", t.pattern_fraction},
                      {"level_tolerance", t.level_tolerance}, {"peak_force", t.peak_force},
+                     {"peak_force_window_s", t.peak_force_window_s},
                      {"mean_force", t.mean_force},       {"absorbed_energy", t.absorbed_energy},
                      {"alternation_index", alternation_threshold}};
   return j;

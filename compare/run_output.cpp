@@ -47,6 +47,28 @@ double peak_force(const RunResult& r) {
   return peak;
 }
 
+double peak_mean_force(const RunResult& r, double window_s) {
+  const auto& t = r.time_s;
+  const auto& f = r.impactor_force_n;
+  const std::size_t n = std::min(t.size(), f.size());
+  if (n < 2 || window_s <= 0.0) return peak_force(r);
+  // Trapezoidal integral of F over [t_i, t_i + window] for every sample start i.
+  double peak = 0.0;
+  std::size_t j = 0;
+  double integral = 0.0;  // over [t_i, t_j]
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0) integral -= 0.5 * (f[i - 1] + f[i]) * (t[i] - t[i - 1]);
+    if (j < i) { j = i; integral = 0.0; }
+    while (j + 1 < n && t[j + 1] - t[i] <= window_s * (1.0 + 1e-9)) {
+      integral += 0.5 * (f[j] + f[j + 1]) * (t[j + 1] - t[j]);
+      ++j;
+    }
+    const double span = t[j] - t[i];
+    if (span >= 0.5 * window_s) peak = std::max(peak, integral / span);
+  }
+  return peak > 0.0 ? peak : peak_force(r);
+}
+
 double mean_force(const RunResult& r) {
   const auto& x = r.impactor_displacement_m;
   const auto& f = r.impactor_force_n;

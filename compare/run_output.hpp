@@ -19,6 +19,10 @@ double energy_balance_error(const RunResult& r, const Scene& scene);
 // "arrest_time_s" in extra), −1 if never.
 double peak_force(const RunResult& r);
 double arrest_time(const RunResult& r);
+// Largest mean of the impactor force over any window of `window_s` (the crushing force
+// without the first-contact stress-wave spike, which lasts tens of µs in the FE and does
+// not exist in the hinge models); the plain peak when the history is shorter.
+double peak_mean_force(const RunResult& r, double window_s);
 // Mean crushing force: work of the impactor force over its loading travel / largest travel.
 double mean_force(const RunResult& r);
 // Energy the rings absorbed: plastic dissipation at the end of the run.

@@ -171,3 +171,13 @@ TEST(ReportHtml, SelfContainedPageWithVerdictsAndCharts) {
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(html.find("http://") , html.find("http://www.w3.org/2000/svg"));  // no external resources
 }
+
+TEST(Metrics, PeakMeanForceIgnoresAShortSpike) {
+  RunResult r = synthetic(alternating, wraps_135, 1000.0);  // constant 1 kN over ~7.5 ms
+  r.impactor_force_n[1] = 20000.0;                          // one-sample spike (~0.15 ms)
+  EXPECT_DOUBLE_EQ(peak_force(r), 20000.0);
+  const double dt = r.time_s[1] - r.time_s[0];
+  // A window of 10 samples sees the spike's triangle (area 19 kN × dt) spread over 10 dt.
+  EXPECT_NEAR(peak_mean_force(r, 10 * dt), 1000.0 + 19000.0 / 10.0, 1e-6);
+  EXPECT_NEAR(peak_mean_force(r, 40 * dt), 1000.0 + 19000.0 / 40.0, 1e-6);
+}
