@@ -385,3 +385,39 @@ TEST(ChainModel, StableStepBoundsAShearedRing) {
     EXPECT_LE(bound, 2 * truth) << s.limited_by;
   }
 }
+
+TEST(ChainModel, TangentWithInnerWallContactMatchesFiniteDifferences) {
+  // A ring squeezed flat until its inner walls overlap at the centre (y → y (r − ri − δ)/r,
+  // elastic material so that the force is smooth): the inner-wall contact's tangent.
+  for (bool half : {true, false}) {
+    ChainInput in = chain(1, JointKind::Free, half, 6);
+    in.material.hardening = {{1e15, 0.0}};
+    ChainModel model(in);
+    const auto& mesh = model.mesh();
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
+    const double ri = in.ring.inner_radius_m, delta = 0.1e-3;
+    for (int n = 0; n < model.dofs() / 2; ++n) {
+      if (n == mesh.impactor_node) continue;
+      const Eigen::Vector2d& p = mesh.nodes[n];
+      u(2 * n + 1) = p.y() * (p.norm() - ri - delta) / p.norm() - p.y();
+    }
+    u(model.impactor_dof()) = 0.02;
+    SystemEvaluation ev, ep, em;
+    model.evaluate(u, true, ev);
+    ASSERT_GT(model.contact_forces().self_n, 0.0) << (half ? "half" : "full");
+    SparseSystem& sys = model.tangent_system();
+    const Eigen::MatrixXd k = Eigen::MatrixXd(sys.matrix());
+    const int nf = sys.free_dofs();
+    Eigen::MatrixXd kfd(nf, nf);
+    const double h = 1e-8 * kR;
+    for (int j = 0; j < nf; ++j) {
+      Eigen::VectorXd up = u, um = u;
+      up(sys.free_to_dof()[j]) += h;
+      um(sys.free_to_dof()[j]) -= h;
+      model.evaluate(up, false, ep);
+      model.evaluate(um, false, em);
+      for (int i = 0; i < nf; ++i) kfd(i, j) = (ep.force(sys.free_to_dof()[i]) - em.force(sys.free_to_dof()[i])) / (2 * h);
+    }
+    EXPECT_LT((k - kfd).lpNorm<Eigen::Infinity>(), 1e-6 * k.lpNorm<Eigen::Infinity>()) << (half ? "half" : "full");
+  }
+}
