@@ -7,7 +7,10 @@
 // Contract:
 //  - u is the total displacement from the reference configuration; evaluate(u) writes only
 //    trial (path) states relative to the last commit, so a rejected step leaves no trace;
-//  - commit(u) makes the trial states of the last evaluate(u) the committed ones;
+//  - commit(u) makes the trial states of the last evaluate(u) the committed ones; when the
+//    last evaluate() was at another displacement (the HHT half-step residual, thesis §3.5,
+//    evaluates at u_{n+½} after Newton converged at u_{n+1}) commit(u) re-evaluates at u
+//    first, so the committed path is always that of the committed displacements;
 //  - fixed dofs stay at zero displacement; `force` carries their reactions;
 //  - the energies are those of the model (a half model's, not doubled).
 #pragma once

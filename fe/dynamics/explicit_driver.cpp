@@ -1,0 +1,124 @@
+#include "fe/dynamics/explicit_driver.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "fe/time/static_driver.hpp"  // SolveFailure
+
+namespace ringcrush::fe {
+
+ExplicitDriver::ExplicitDriver(DynamicSystem& system, const ExplicitOptions& options, const Eigen::VectorXd& u0)
+    : sys_(system), opt_(options) {
+  if (!(opt_.safety > 0 && opt_.safety <= 1))
+    throw std::invalid_argument(fmt::format("explicit: safety = {} must be in (0, 1]", opt_.safety));
+  if (opt_.stable_step_every < 1)
+    throw std::invalid_argument(fmt::format("explicit: stable_step_every = {} must be ≥ 1", opt_.stable_step_every));
+  if (!(opt_.max_step_s > 0))
+    throw std::invalid_argument(fmt::format("explicit: max_step_s = {} must be > 0", opt_.max_step_s));
+  if (!(opt_.fixed_step_s >= 0) || !std::isfinite(opt_.fixed_step_s))
+    throw std::invalid_argument(fmt::format("explicit: fixed_step_s = {} must be ≥ 0", opt_.fixed_step_s));
+  const int n = sys_.dofs();
+  const Eigen::VectorXd& m = sys_.lumped_mass();
+  if (m.size() != n) throw std::invalid_argument("explicit: lumped mass size differs from the dof count");
+  inv_mass_ = Eigen::VectorXd::Zero(n);
+  std::vector<char> fixed(static_cast<std::size_t>(n), 0);
+  for (int d : sys_.fixed_dofs()) fixed[static_cast<std::size_t>(d)] = 1;
+  for (int d = 0; d < n; ++d) {
+    if (fixed[static_cast<std::size_t>(d)]) continue;
+    if (!(m(d) > 0)) throw std::invalid_argument(fmt::format("explicit: lumped mass of free dof {} is {} (must be > 0)", d, m(d)));
+    inv_mass_(d) = 1.0 / m(d);
+  }
+  u_ = u0.size() ? u0 : Eigen::VectorXd::Zero(n);
+  if (u_.size() != n) throw std::invalid_argument("explicit: initial displacement size differs from the dof count");
+  v_ = sys_.initial_velocity();
+  for (int d : sys_.fixed_dofs()) v_(d) = 0;
+  sys_.evaluate(u_, false, ev_);
+  sys_.commit(u_);
+  ++evaluations_;
+  contact_time_ += ev_.contact_time_s;
+  a_ = -inv_mass_.cwiseProduct(ev_.force);
+  energy_.start(EnergyBalance::kinetic_energy(m, v_), ev_);
+  if (!ev_.force.allFinite()) fail("non-finite initial force", -1);
+}
+
+void ExplicitDriver::fail(const std::string& what, int dof) const {
+  const std::string where = dof < 0 ? std::string("-") : describe_dof ? describe_dof(dof) : fmt::format("dof {}", dof);
+  throw SolveFailure(fmt::format(
+      "explicit central difference: {} at t = {:.6g} s (step {}, Δt = {:.4g} s, stable step 2/ω_max = {:.4g} s "
+      "limited by {}, safety {}); largest at {}",
+      what, t_, steps_, dt_, dt_stable_, limited_by_.empty() ? "-" : limited_by_, opt_.safety, where));
+}
+
+// Δt = safety · 2/ω_max (issue 4 item 5); the bound includes the active contact stiffness.
+void ExplicitDriver::bound_step() {
+  const StableStep s = sys_.stable_step(u_);
+  if (!(s.step_s > 0) || !std::isfinite(s.step_s)) fail(fmt::format("stable step {} is not positive", s.step_s), -1);
+  const double old = dt_target_;
+  const std::string old_by = limited_by_;
+  dt_stable_ = s.step_s;
+  limited_by_ = s.limited_by;
+  dt_target_ = std::min(opt_.safety * s.step_s, opt_.max_step_s);
+  if (opt_.safety * s.step_s > opt_.max_step_s) limited_by_ = "max_step_s";
+  rebound_ = false;
+  since_bound_ = 0;
+  if (log && (old_by != limited_by_ || std::abs(dt_target_ - old) > 0.1 * old))
+    log(fmt::format("explicit: t = {:.6g} s, Δt = {:.4g} s ({} × 2/ω_max = {:.4g} s, limited by {})", t_, dt_target_,
+                    opt_.safety, dt_stable_, limited_by_));
+}
+
+void ExplicitDriver::step(double t_limit) {
+  if (!(t_limit > t_)) throw std::invalid_argument(fmt::format("explicit: step limit {} is not after t = {}", t_limit, t_));
+  if (opt_.fixed_step_s > 0) {
+    dt_target_ = opt_.fixed_step_s;
+    if (limited_by_.empty()) {
+      limited_by_ = "fixed step";
+      dt_stable_ = sys_.stable_step(u_).step_s;
+    }
+  } else if (rebound_ || since_bound_ >= opt_.stable_step_every) {
+    bound_step();
+  }
+  dt_ = std::min(dt_target_, t_limit - t_);
+  const Eigen::VectorXd& m = sys_.lumped_mass();
+
+  // Half-step velocity and the new displacement.
+  v_.noalias() += 0.5 * dt_ * a_;
+  du_ = dt_ * v_;
+  u_ += du_;
+  f_old_ = ev_.force;
+  sys_.evaluate(u_, false, ev_);
+  ++evaluations_;
+  contact_time_ += ev_.contact_time_s;
+  int bad = -1;
+  for (int d = 0; d < ev_.force.size() && bad < 0; ++d)
+    if (!std::isfinite(ev_.force(d))) bad = d;
+  if (bad >= 0) fail("non-finite internal force (the integration has blown up)", bad);
+  a_ = -inv_mass_.cwiseProduct(ev_.force);
+  v_.noalias() += 0.5 * dt_ * a_;
+  sys_.commit(u_);
+  t_ += dt_;
+  ++steps_;
+  ++since_bound_;
+  min_dt_ = steps_ == 1 ? dt_ : std::min(min_dt_, dt_);
+  max_dt_ = std::max(max_dt_, dt_);
+
+  energy_.add_step(f_old_, ev_.force, du_);
+  energy_.set_state(EnergyBalance::kinetic_energy(m, v_), ev_);
+  // A conservative system cannot gain kinetic energy beyond what it started with: growth is
+  // the central-difference instability (Δt > 2/ω_max), caught before any NaN appears.
+  if (!std::isfinite(energy_.kinetic) || energy_.kinetic > opt_.blowup_energy_factor * energy_.reference()) {
+    int at = 0;
+    m.cwiseProduct(v_.cwiseAbs2()).maxCoeff(&at);
+    fail(fmt::format("blow-up: kinetic energy {:.4g} J > {} × reference {:.4g} J", energy_.kinetic,
+                     opt_.blowup_energy_factor, energy_.reference()),
+         at);
+  }
+  if (opt_.energy_error_limit > 0 && energy_.relative_balance_error() > opt_.energy_error_limit)
+    fail(fmt::format("energy limit: |balance error| {:.4g} J = {:.3g} % of {:.4g} J exceeds energy_error_limit {:.3g} %",
+                     std::abs(energy_.balance_error()), 100 * energy_.relative_balance_error(), energy_.reference(),
+                     100 * opt_.energy_error_limit),
+         -1);
+}
+
+}  // namespace ringcrush::fe
