@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -32,13 +33,36 @@ struct RigidFace {
   std::vector<int> rings;
 };
 
-// Shortest current edge of a CPS8 element (each side through its mid-side node).
-double shortest_edge(const std::array<int, 8>& conn, const std::vector<Eigen::Vector2d>& x) {
+// Shape measure of the element eigenvalue: λ_max ∝ (E/ρ_current)/h² with h the element's
+// smallest height, h = A / (longest side), and ρ_current ∝ 1/A at constant mass, so
+// λ_max ∝ L_max²/A (sides through their mid-side nodes; A of the 8-node polygon).
+double shape_measure(const std::array<int, 8>& conn, const std::vector<Eigen::Vector2d>& x) {
   static constexpr int side[4][3] = {{0, 4, 1}, {1, 5, 2}, {2, 6, 3}, {3, 7, 0}};
-  double h = 1e300;
+  static constexpr int ring[8] = {0, 4, 1, 5, 2, 6, 3, 7};
+  double l = 0, area = 0;
   for (const auto& s : side)
-    h = std::min(h, (x[conn[s[0]]] - x[conn[s[1]]]).norm() + (x[conn[s[1]]] - x[conn[s[2]]]).norm());
-  return h;
+    l = std::max(l, (x[conn[s[0]]] - x[conn[s[1]]]).norm() + (x[conn[s[1]]] - x[conn[s[2]]]).norm());
+  for (int i = 0; i < 8; ++i) {
+    const auto &p = x[conn[ring[i]]], &q = x[conn[ring[(i + 1) % 8]]];
+    area += 0.5 * (p.x() * q.y() - q.x() * p.y());
+  }
+  return area > 0 ? l * l / area : std::numeric_limits<double>::infinity();
+}
+
+// Largest λ of K_e v = λ M_e v: elastic tangent of the unstressed element on coordinates
+// x, HRZ mass (constant) per node.
+double element_omega2(const ElementCoords& x, const std::array<double, 8>& mass, Integration rule, double width,
+                      const J2PlaneStress& material) {
+  const Cps8Geometry geo = cps8_geometry(x, rule, width);
+  std::array<PointState, 9> committed{}, trial{};
+  Cps8Output out;
+  const double du[16] = {};
+  cps8_evaluate(geo, du, committed.data(), trial.data(), material, true, out);
+  Eigen::Matrix<double, 16, 1> s;
+  for (int k = 0; k < 16; ++k) s(k) = 1.0 / std::sqrt(mass[k / 2]);
+  const ElementMatrix a = s.asDiagonal() * out.tangent * s.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<ElementMatrix> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().maxCoeff();
 }
 
 }  // namespace
@@ -57,7 +81,10 @@ struct ChainModel::Impl {
   std::unique_ptr<SurfaceContact> surface;
   std::vector<RigidFace> faces;
   std::vector<double> outer_k, outer_area;  // per local outer node (all rings alike)
-  std::vector<double> omega2_ref, edge_ref;  // element eigenvalue bound at the reference
+  // Element eigenvalue bound: the exact λ_max of each element at its last exact evaluation
+  // and the shape measure there; in between λ is scaled with the shape measure.
+  std::vector<std::array<double, 8>> element_mass;
+  std::vector<double> omega2_exact, shape_exact;
   ChainContactForces forces;
   std::vector<std::pair<int, double>> pressure;
   double face_near_omega2 = 0, surface_near_omega2 = 0;
@@ -173,30 +200,21 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   const double share = 1.0 / symmetry_factor();
   m.mass = Eigen::VectorXd::Zero(2 * nodes);
   m.geometry.resize(ne);
-  m.omega2_ref.resize(ne);
-  m.edge_ref.resize(ne);
+  m.element_mass.resize(ne);
+  m.omega2_exact.resize(ne);
+  m.shape_exact.resize(ne);
   for (int e = 0; e < ne; ++e) {
     ElementCoords xe;
     for (int a = 0; a < 8; ++a) xe.row(a) = mesh_.nodes[mesh_.elements[e][a]].transpose();
     const auto me = hrz_lumped_mass(xe, input.density_kg_m3, input.ring.width_m);
+    m.element_mass[e] = me;
     for (int a = 0; a < 8; ++a) {
       m.mass(2 * mesh_.elements[e][a]) += me[a];
       m.mass(2 * mesh_.elements[e][a] + 1) += me[a];
     }
-    // Element eigenvalue bound (issue 4 item 5): largest λ of K_e v = λ M_e v with the
-    // elastic tangent of the unstressed element and its HRZ mass; ω_max² of the assembled
-    // system is at most the largest element λ (Rayleigh quotient, M = Σ M_e).
     m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
-    Cps8Output out;
-    double du[16] = {};
-    std::vector<PointState> c(m.points_per_element), t(m.points_per_element);
-    cps8_evaluate(m.geometry[e], du, c.data(), t.data(), m.material, true, out);
-    Eigen::Matrix<double, 16, 1> s;
-    for (int k = 0; k < 16; ++k) s(k) = 1.0 / std::sqrt(me[k / 2]);
-    const ElementMatrix a = s.asDiagonal() * out.tangent * s.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<ElementMatrix> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
-    m.omega2_ref[e] = eig.eigenvalues().maxCoeff();
-    m.edge_ref[e] = shortest_edge(mesh_.elements[e], mesh_.nodes);
+    m.omega2_exact[e] = element_omega2(xe, me, input.integration, input.ring.width_m, m.material);
+    m.shape_exact[e] = shape_measure(mesh_.elements[e], mesh_.nodes);
   }
   m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
   for (int p : mesh_.plate_nodes) m.mass(2 * p) = m.mass(2 * p + 1) = share * input.plate_mass_kg;
@@ -421,18 +439,31 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
 }
 
 StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
-  const Impl& m = *impl_;
-  // Elements: the reference bound scaled with the shortest current edge (λ ∝ 1/h² for a
-  // similar shape; the elastic tangent bounds the elastic-plastic one).
+  Impl& m = *impl_;  // the exact element eigenvalues are cached
+  // Elements (issue 4 item 5): ω_max² of the assembled system is at most the largest
+  // element λ_max(K_e, M_e) (Rayleigh quotient, M = Σ M_e), with the elastic tangent, which
+  // bounds the elastic-plastic one. λ_max is computed exactly (16×16 eigenproblem) at the
+  // start and again for every element whose shape measure (L_max²/A) has changed by more
+  // than 5 % since its last exact value; in between it is scaled with the shape measure.
+  // (The shortest edge alone underestimates λ of a sheared element up to 3×.)
   std::vector<Eigen::Vector2d> x(mesh_.nodes.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
   double el = 0;
   int worst = -1;
   for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
-    const double h = shortest_edge(mesh_.elements[e], x);
-    if (!(h > 0)) throw std::runtime_error(fmt::format("stable step: element {} has collapsed", e + 1));
-    const double ratio = m.edge_ref[e] / h;
-    const double w2 = m.omega2_ref[e] * ratio * ratio;
+    const double shape = shape_measure(mesh_.elements[e], x);
+    if (!std::isfinite(shape)) throw std::runtime_error(fmt::format("stable step: element {} (ring {}) has collapsed", e + 1, mesh_.element_ring[e] + 1));
+    if (std::abs(shape / m.shape_exact[e] - 1) > 0.05) {
+      ElementCoords xe;
+      for (int a = 0; a < 8; ++a) xe.row(a) = x[mesh_.elements[e][a]].transpose();
+      try {
+        m.omega2_exact[e] = element_omega2(xe, m.element_mass[e], input_.integration, input_.ring.width_m, m.material);
+      } catch (const std::invalid_argument& err) {
+        throw std::runtime_error(fmt::format("stable step: element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
+      }
+      m.shape_exact[e] = shape;
+    }
+    const double w2 = m.omega2_exact[e] * shape / m.shape_exact[e];
     if (w2 > el) { el = w2; worst = static_cast<int>(e); }
   }
   // Contact springs of the last evaluation within one element depth (active or about to

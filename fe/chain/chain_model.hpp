@@ -11,6 +11,15 @@
 //    overlap (broad phase), two passes (i's nodes on j's surface and j's on i's), so
 //    neither ring is master;
 //  - every ring's inner wall against itself (lock-up), as RingContact does for one ring.
+// Implementation notes for the drivers:
+//  - commit(u) takes the trial states of u: if the last evaluate() was at another u (e.g. a
+//    half-step residual evaluated after the step), it evaluates u again first;
+//  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues, re-solved
+//    when an element's shape has changed by 5 %) and the contact springs of the LAST
+//    evaluate() within one element depth of contact; call it between evaluate() calls, on
+//    the driver's thread;
+//  - with two threads (ChainInput::threads) the element loop is split over a persistent
+//    helper thread; the results are bitwise those of one thread.
 #pragma once
 
 #include <Eigen/Core>

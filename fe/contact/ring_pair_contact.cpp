@@ -31,6 +31,38 @@ struct Cubic {
   }
 };
 
+// Bounding box {lo x, hi x, lo y, hi y} of the curve itself over [lo, hi] (ends and the
+// interior extrema of each coordinate's cubic): an exact lower bound of the distance from
+// a point to the piece is its distance to this box.
+void curve_box(const PiecePolynomial& p, const double* xy, double* box) {
+  const Cubic c(p, xy);
+  for (int d = 0; d < 2; ++d) {
+    auto value = [&](double f) { return c.a[0][d] + f * (c.a[1][d] + f * (c.a[2][d] + f * c.a[3][d])); };
+    double lo = std::min(value(p.lo), value(p.hi)), hi = std::max(value(p.lo), value(p.hi));
+    auto consider = [&](double f) {
+      if (f > p.lo && f < p.hi) {
+        const double v = value(f);
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    };
+    // x'(f) = a1 + 2 a2 f + 3 a3 f² = 0
+    const double a = 3 * c.a[3][d], b = 2 * c.a[2][d], k = c.a[1][d];
+    if (std::abs(a) > 1e-12 * (std::abs(b) + std::abs(k))) {
+      const double disc = b * b - 4 * a * k;
+      if (disc >= 0) {
+        const double r = std::sqrt(disc);
+        consider((-b + r) / (2 * a));
+        consider((-b - r) / (2 * a));
+      }
+    } else if (b != 0) {
+      consider(-k / b);
+    }
+    box[2 * d] = lo;
+    box[2 * d + 1] = hi;
+  }
+}
+
 // A pieces chain from segments; closed: the last segment joins the first (full ring).
 // Returns the pieces and the symmetric-end flags.
 void add_chain(const std::vector<SurfaceSegment>& chain, bool closed, bool lo_symmetric, bool hi_symmetric,
@@ -246,6 +278,8 @@ SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
   for (const auto& p : passes_) {
     auto& polys = poly_.emplace_back();
     for (const auto& q : p.pieces) polys.emplace_back(q);
+    box_.emplace_back(p.pieces.size());
+    box_stamp_.emplace_back(p.pieces.size(), 0u);
   }
   slave_omega2_.resize(passes_.size());
   for (std::size_t p = 0; p < passes_.size(); ++p) slave_omega2_[p].assign(passes_[p].slaves.size(), 0.0);
@@ -258,7 +292,8 @@ void SurfaceContact::set_mass(const Eigen::VectorXd& mass) {
     for (const auto& q : pass.pieces)
       for (int a = 0; a < q.count; ++a) inv_master = std::max(inv_master, 1.0 / mass(2 * q.nodes[a] + 1));
     // Rank-one contact element k G Gᵀ, G = [n; −c_a n]: its frequency² over the lumped mass
-    // is k (1/m_s + Σ c_a²/m_a); Σ c_a² ≤ 1.25 on the quadratic and Hermite pieces.
+    // is k (1/m_s + Σ c_a²/m_a); Σ c_a² ≤ 1 on the quadratic and Hermite pieces (smoothing
+    // up to 0.49), 1.25 keeps a margin.
     for (std::size_t s = 0; s < pass.slaves.size(); ++s)
       slave_omega2_[p][s] = pass.slave_k[s] * (1.0 / mass(2 * pass.slaves[s] + 1) + 1.25 * inv_master);
   }
@@ -277,14 +312,17 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
     box.resize(p.pieces.size());
     double m_lo_x = 1e300, m_hi_x = -1e300, m_lo_y = 1e300, m_hi_y = -1e300;
     for (std::size_t q = 0; q < p.pieces.size(); ++q) {
-      double lx = 1e300, hx = -1e300, ly = 1e300, hy = -1e300;
+      double xy[12], cb[4];
       for (int a = 0; a < p.pieces[q].count; ++a) {
-        const auto& v = x[p.pieces[q].nodes[a]];
-        lx = std::min(lx, v.x()); hx = std::max(hx, v.x());
-        ly = std::min(ly, v.y()); hy = std::max(hy, v.y());
+        xy[2 + 2 * a] = x[p.pieces[q].nodes[a]].x();
+        xy[3 + 2 * a] = x[p.pieces[q].nodes[a]].y();
       }
-      // Wider than the evaluation pad by 3 skins: nodes move < skin until the next build.
-      const double pad = depth_ + 0.25 * std::max(hx - lx, hy - ly) + 3 * skin_;
+      curve_box(poly_[pi][q], xy, cb);
+      const double lx = cb[0], hx = cb[1], ly = cb[2], hy = cb[3];
+      // Wider than the evaluation pad by 3 skins: until the next build the slave moves less
+      // than one skin and the curve less than two (Σ|c_k| ≤ 1.5 on every piece, smoothing
+      // up to 0.49).
+      const double pad = depth_ + 3 * skin_;
       box[q] = {lx - pad, hx + pad, ly - pad, hy + pad};
       m_lo_x = std::min(m_lo_x, box[q][0]); m_hi_x = std::max(m_hi_x, box[q][1]);
       m_lo_y = std::min(m_lo_y, box[q][2]); m_hi_y = std::max(m_hi_y, box[q][3]);
@@ -318,6 +356,7 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
   for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
     stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
   if (stale) rebuild(x);
+  ++stamp_;
   double xy[12];
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
@@ -328,24 +367,46 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
       const Eigen::Vector2d& xs = x[node];
       int best = -1;
       double best_abs = depth_, best_f = 0, best_gap = 0;
-      for (int c = start[s]; c < start[s + 1]; ++c) {
-        const int q = candidate_piece_[c];
+      // Candidates within one depth of the curve's box, with that distance as a lower bound
+      // of their |gap|; projected nearest-first, and no further once the bound exceeds the
+      // best |gap| found: the result is the same, most projections are not made. At a
+      // symmetry-plane end the accepted gap can be shorter than the distance, so such pieces
+      // get no bound.
+      struct Near { double bound; int piece; };
+      std::array<Near, 64> near;
+      int count = 0;
+      auto project = [&](int q) {
         const CurvePiece& piece = p.pieces[q];
-        double lx = 1e300, hx = -1e300, ly = 1e300, hy = -1e300;
-        for (int a = 0; a < piece.count; ++a) {
-          const auto& v = x[piece.nodes[a]];
-          lx = std::min(lx, v.x()); hx = std::max(hx, v.x());
-          ly = std::min(ly, v.y()); hy = std::max(hy, v.y());
-        }
-        const double pad = depth_ + 0.25 * std::max(hx - lx, hy - ly);
-        if (xs.x() < lx - pad || xs.x() > hx + pad || xs.y() < ly - pad || xs.y() > hy + pad) continue;
         xy[0] = xs.x(); xy[1] = xs.y();
         for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
         double f = piece.lo - 1.0, gap = 0;
-        if (!surface_gap(poly_[pi][q], xy, p.symmetric_end[q], true, f, gap)) continue;
+        if (!surface_gap(poly_[pi][q], xy, p.symmetric_end[q], true, f, gap)) return;
         // The closest owned piece decides (a node behind the wall of another piece is not
         // "penetrating" it).
         if (std::abs(gap) < best_abs) { best = q; best_abs = std::abs(gap); best_f = f; best_gap = gap; }
+      };
+      for (int c = start[s]; c < start[s + 1]; ++c) {
+        const int q = candidate_piece_[c];
+        auto& cb = box_[pi][q];
+        if (box_stamp_[pi][q] != stamp_) {
+          const CurvePiece& piece = p.pieces[q];
+          for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
+          curve_box(poly_[pi][q], xy, cb.data());
+          box_stamp_[pi][q] = stamp_;
+        }
+        const double dx = std::max({cb[0] - xs.x(), 0.0, xs.x() - cb[1]}), dy = std::max({cb[2] - xs.y(), 0.0, xs.y() - cb[3]});
+        if (dx >= depth_ || dy >= depth_) continue;
+        const double bound = p.symmetric_end[q] ? -1.0 : std::sqrt(dx * dx + dy * dy);
+        if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
+        else project(q);
+      }
+      while (count > 0) {
+        int k = 0;
+        for (int i = 1; i < count; ++i)
+          if (near[i].bound < near[k].bound || (near[i].bound == near[k].bound && near[i].piece < near[k].piece)) k = i;
+        if (near[k].bound >= best_abs) break;
+        project(near[k].piece);
+        near[k] = near[--count];
       }
       if (best < 0) continue;
       if (slave_omega2_[pi][s] > st.near_omega2) { st.near_omega2 = slave_omega2_[pi][s]; st.near_node = node; }

@@ -119,6 +119,10 @@ class SurfaceContact {
   std::vector<int> candidate_piece_;
   std::vector<std::vector<double>> slave_omega2_;  // per pass, per slave
   std::vector<std::vector<PiecePolynomial>> poly_; // per pass, per piece
+  // Curve boxes of the current evaluation, computed once per piece (stamp = evaluation).
+  std::vector<std::vector<std::array<double, 4>>> box_;
+  std::vector<std::vector<unsigned>> box_stamp_;
+  unsigned stamp_ = 0;
 };
 
 // Gap and force of a slave node against one piece: coords = [x_s, y_s, x_1, y_1, …] (slave

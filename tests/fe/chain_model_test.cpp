@@ -339,3 +339,85 @@ TEST(ChainModel, GeometryUpdateEqualsCps8Geometry) {
     EXPECT_THROW(Cps8GeometryUpdater(rule).update(inverted, 0.0125, geo), std::invalid_argument);
   }
 }
+
+TEST(ChainModel, StableStepBoundsAShearedRing) {
+  // A ring sheared by x += γ (y − y_c): its elements are skewed up to ~40°, where the
+  // shortest edge alone would underestimate the element eigenvalue ~2×. Truth: the
+  // assembled elastic stiffness of the unstressed elements on the sheared coordinates.
+  for (Integration rule : {Integration::Reduced, Integration::Selective}) {
+    ChainInput in = chain(1, JointKind::Free, false, 4);
+    in.integration = rule;
+    ChainModel model(in);
+    const auto& mesh = model.mesh();
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
+    for (int n = 0; n < model.dofs() / 2; ++n)
+      if (n != mesh.impactor_node) u(2 * n) = 0.8 * mesh.nodes[n].y();
+    u(model.impactor_dof()) = 0.02;  // out of the way
+    SystemEvaluation ev;
+    model.evaluate(u, false, ev);
+    Eigen::MatrixXd k = Eigen::MatrixXd::Zero(model.dofs(), model.dofs());
+    const J2PlaneStress material(in.material);
+    for (const auto& conn : mesh.elements) {
+      ElementCoords xe;
+      for (int a = 0; a < 8; ++a) xe.row(a) = (mesh.nodes[conn[a]] + Eigen::Vector2d(u(2 * conn[a]), u(2 * conn[a] + 1))).transpose();
+      const Cps8Geometry geo = cps8_geometry(xe, rule, in.ring.width_m);
+      std::array<PointState, 9> c{}, t{};
+      const double du[16] = {};
+      Cps8Output out;
+      cps8_evaluate(geo, du, c.data(), t.data(), material, true, out);
+      for (int i = 0; i < 16; ++i)
+        for (int j = 0; j < 16; ++j) k(2 * conn[i / 2] + i % 2, 2 * conn[j / 2] + j % 2) += out.tangent(i, j);
+    }
+    std::vector<bool> fixed(model.dofs(), false);
+    for (int d : model.fixed_dofs()) fixed[d] = true;
+    std::vector<int> free;
+    for (int d = 0; d < model.dofs(); ++d)
+      if (!fixed[d]) free.push_back(d);
+    Eigen::MatrixXd a(free.size(), free.size());
+    for (std::size_t i = 0; i < free.size(); ++i)
+      for (std::size_t j = 0; j < free.size(); ++j)
+        a(i, j) = k(free[i], free[j]) / std::sqrt(model.lumped_mass()(free[i]) * model.lumped_mass()(free[j]));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
+    const double truth = std::sqrt(eig.eigenvalues().maxCoeff());
+    const StableStep s = model.stable_step(u);
+    const double bound = 2 / s.step_s;
+    EXPECT_GE(bound, truth * (1 - 1e-9)) << s.limited_by;
+    EXPECT_LE(bound, 2 * truth) << s.limited_by;
+  }
+}
+
+TEST(ChainModel, TangentWithInnerWallContactMatchesFiniteDifferences) {
+  // A ring squeezed flat until its inner walls overlap at the centre (y → y (r − ri − δ)/r,
+  // elastic material so that the force is smooth): the inner-wall contact's tangent.
+  for (bool half : {true, false}) {
+    ChainInput in = chain(1, JointKind::Free, half, 6);
+    in.material.hardening = {{1e15, 0.0}};
+    ChainModel model(in);
+    const auto& mesh = model.mesh();
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
+    const double ri = in.ring.inner_radius_m, delta = 0.1e-3;
+    for (int n = 0; n < model.dofs() / 2; ++n) {
+      if (n == mesh.impactor_node) continue;
+      const Eigen::Vector2d& p = mesh.nodes[n];
+      u(2 * n + 1) = p.y() * (p.norm() - ri - delta) / p.norm() - p.y();
+    }
+    u(model.impactor_dof()) = 0.02;
+    SystemEvaluation ev, ep, em;
+    model.evaluate(u, true, ev);
+    ASSERT_GT(model.contact_forces().self_n, 0.0) << (half ? "half" : "full");
+    SparseSystem& sys = model.tangent_system();
+    const Eigen::MatrixXd k = Eigen::MatrixXd(sys.matrix());
+    const int nf = sys.free_dofs();
+    Eigen::MatrixXd kfd(nf, nf);
+    const double h = 1e-8 * kR;
+    for (int j = 0; j < nf; ++j) {
+      Eigen::VectorXd up = u, um = u;
+      up(sys.free_to_dof()[j]) += h;
+      um(sys.free_to_dof()[j]) -= h;
+      model.evaluate(up, false, ep);
+      model.evaluate(um, false, em);
+      for (int i = 0; i < nf; ++i) kfd(i, j) = (ep.force(sys.free_to_dof()[i]) - em.force(sys.free_to_dof()[i])) / (2 * h);
+    }
+    EXPECT_LT((k - kfd).lpNorm<Eigen::Infinity>(), 1e-6 * k.lpNorm<Eigen::Infinity>()) << (half ? "half" : "full");
+  }
+}
