@@ -248,6 +248,23 @@ TEST(DynamicChain, NumericalDissipationOfAnImpactHht) {
   EXPECT_LT(r.history.back().impactor_velocity_m_s, 29.0);
 }
 
+TEST(DynamicChain, HhtAndExplicitAgreeOnACoarseImpact) {
+  // Verification f in small: the same impact (two welded coarse rings, 0.4 ms) by both
+  // integrators; crush of each ring within 10 % of ring 1's, impactor speed within 2 %.
+  DynamicSolverInput s;
+  s.end_time_s = 4e-4;
+  s.frames = 0;
+  s.scheme = DynamicScheme::Explicit;
+  const DynamicResult e = run_dynamic(coarse_impact(), s);
+  s.scheme = DynamicScheme::Hht;
+  const DynamicResult h = run_dynamic(coarse_impact(), s);
+  const auto &ce = e.history.back().ring_crush_m, &ch = h.history.back().ring_crush_m;
+  ASSERT_GT(ce[0], 2e-3);
+  for (std::size_t i = 0; i < ce.size(); ++i) EXPECT_NEAR(ch[i], ce[i], 0.1 * ce[0]) << "ring " << i + 1;
+  EXPECT_NEAR(h.history.back().impactor_velocity_m_s, e.history.back().impactor_velocity_m_s,
+              0.02 * e.history.back().impactor_velocity_m_s);
+}
+
 TEST(DynamicChain, ArrestEndsTheRun) {
   // One coarse ring hit at 2 m/s: the impactor stops and rebounds, the ring comes to rest.
   ChainInput in = coarse(1, JointKind::Welded);
