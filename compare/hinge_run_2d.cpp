@@ -209,6 +209,16 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     r.mode.push_back(mode_of(c, w.wrap_around));
   }
 
+  // Final outlines (mean line, closed) for reports; same chain frame as the FE (ring 1
+  // centred at y = 0, rings below).
+  for (const auto& shape : final_shapes) {
+    std::vector<std::array<double, 2>> outline;
+    for (const auto& p : shape.points) outline.push_back({p.x(), p.y()});
+    if (!outline.empty()) outline.push_back(outline.front());
+    r.ring_outline_m.push_back(std::move(outline));
+  }
+  r.outline_half = false;
+
   run.hinge_map = hinge_map(h.shapes.back(), raw.first_yield_time_s);
   nlohmann::json maps = nlohmann::json::array();
   for (std::size_t ring = 0; ring < run.hinge_map.size(); ++ring) {

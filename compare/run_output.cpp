@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "compare/measures.hpp"
+#include "compare/run_result_io.hpp"
 #include "compare/svg_plot.hpp"
 #include "compare/version.hpp"
 
@@ -45,6 +46,21 @@ double peak_force(const RunResult& r) {
   for (double f : r.force_n) peak = std::max(peak, f);
   return peak;
 }
+
+double mean_force(const RunResult& r) {
+  const auto& x = r.impactor_displacement_m;
+  const auto& f = r.impactor_force_n;
+  const std::size_t n = std::min(x.size(), f.size());
+  double work = 0.0, travel = 0.0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const double dx = x[i] - x[i - 1];
+    if (dx > 0.0) work += 0.5 * (f[i] + f[i - 1]) * dx;  // loading travel only
+    travel = std::max(travel, x[i]);
+  }
+  return travel > 0.0 ? work / travel : 0.0;
+}
+
+double absorbed_energy(const RunResult& r) { return r.plastic_j.empty() ? 0.0 : r.plastic_j.back(); }
 
 double arrest_time(const RunResult& r) {
   if (r.extra.contains("arrest_time_s")) {
@@ -189,6 +205,8 @@ void write_run_plots(const RunResult& r, const Scene& scene, ResultsDir& out) {
 void write_run_result(const RunResult& r, const Scene& scene, ResultsDir& out) {
   write_json(out.file("summary.json"), summary_json(r, scene));
   history_table(r).write(out.file("history.csv"));
+  // The whole RunResult, for `ringcrush compare` (cached runs) and scripts.
+  write_json(out.file("run_result.json"), run_result_to_json(r));
   if (scene.outputs.plots) write_run_plots(r, scene, out);
 }
 

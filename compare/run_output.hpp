@@ -19,6 +19,10 @@ double energy_balance_error(const RunResult& r, const Scene& scene);
 // "arrest_time_s" in extra), −1 if never.
 double peak_force(const RunResult& r);
 double arrest_time(const RunResult& r);
+// Mean crushing force: work of the impactor force over its loading travel / largest travel.
+double mean_force(const RunResult& r);
+// Energy the rings absorbed: plastic dissipation at the end of the run.
+double absorbed_energy(const RunResult& r);
 
 nlohmann::json summary_json(const RunResult& r, const Scene& scene);
 CsvTable history_table(const RunResult& r);

@@ -3,6 +3,7 @@
 // here and writes summary.json / history.csv with the stable column names of DESIGN.md.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ struct RunResult {
   std::vector<double> wrapped_angle_deg;
   std::vector<double> inverted_arc_m;
   std::vector<std::string> mode;            // "flattened", "wrapped", "intact", ...
+  // Final outline of each ring in the chain's frame (m): the points a model has (FE outer
+  // surface nodes, polygon nodes), ordered around the ring; a half model's x ≥ 0 half only
+  // (`outline_half`). Empty when the model has no shape (Levels 0, 1, shock).
+  std::vector<std::vector<std::array<double, 2>>> ring_outline_m;
+  bool outline_half = false;
 
   std::vector<RunEvent> events;
   SolverStatistics statistics;

@@ -221,6 +221,7 @@ Scene parse_scene(const std::string& text, const std::string& file) {
   }
   Scene s;
   s.source = file;
+  s.text = text;
   s.name = std::filesystem::path(file).stem().string();
   TableReader top(root, "", file);
   s.title = top.string("title", s.name);

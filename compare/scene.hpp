@@ -122,6 +122,7 @@ struct Scene {
   std::string name;         // file stem
   std::string title;
   std::filesystem::path source;
+  std::string text;         // the TOML it was parsed from (cache keys, sweep cases)
   Rings rings;
   Joints joints;
   std::optional<Impactor> impactor;  // dynamic analyses

@@ -23,5 +23,9 @@ struct CommandRegistration {
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_failure = 1;      // a run failed (solver diagnosis printed)
 inline constexpr int exit_bad_input = 2;    // scene, deck or flags rejected
+inline constexpr int exit_disagree = 3;     // compare: both models ran and they disagree
+
+// A command that completed but wants a non-zero status (compare: disagreement) sets this.
+int& command_exit_status();
 
 }  // namespace ringcrush::compare::cli

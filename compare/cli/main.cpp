@@ -3,7 +3,8 @@
 //   ringcrush formula data/scenes/thesis_static.toml -o results/formula
 //   ringcrush validate data/scenes/test30_welded.toml
 //
-// Exit status: 0 success, 1 a run failed (with a diagnosis), 2 bad input or usage.
+// Exit status: 0 success, 1 a run failed (with a diagnosis), 2 bad input or usage,
+// 3 `compare` ran both models and they disagree.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -44,10 +45,15 @@ int main(int argc, char** argv) {
     std::cerr << "ringcrush: failed: " << e.what() << '\n';
     return ringcrush::compare::cli::exit_failure;
   }
-  return ringcrush::compare::cli::exit_ok;
+  return ringcrush::compare::cli::command_exit_status();
 }
 
 namespace ringcrush::compare::cli {
+int& command_exit_status() {
+  static int status = exit_ok;
+  return status;
+}
+
 std::vector<std::pair<int, CommandFactory>>& command_registry() {
   static std::vector<std::pair<int, CommandFactory>> registry;
   return registry;

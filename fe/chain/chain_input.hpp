@@ -31,6 +31,10 @@ struct ChainInput {
   double impactor_mass_kg = 0.256;   // physical (full) mass; a half model carries half
   double impactor_velocity_m_s = 30; // toward the chain (> 0)
   bool fixed_target = true;          // rigid plane under the last ring; false: free far end
+  // Threads for the element loop (chain_model.cpp): 0 = automatic (two when the machine has
+  // two idle cores and the chain at least 64 elements), 1 = one, 2 = two. The results are
+  // bitwise the same either way.
+  int threads = 0;
 };
 
 // Throws std::invalid_argument naming the first inconsistent value.

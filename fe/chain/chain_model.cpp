@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 #include "fe/chain/chain_mesh.hpp"
+#include "fe/chain/geometry_update.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
+#include "fe/dynamics/fork_join.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
 #include "fe/material/j2_plane_stress.hpp"
 
@@ -60,12 +64,95 @@ struct ChainModel::Impl {
   int face_near_node = -1, surface_near_node = -1;
   std::vector<std::array<double, 4>> ring_box;  // per ring: outer node box (lo x, hi x, lo y, hi y)
   SystemEvaluation scratch;
+  Cps8GeometryUpdater updater;
+  double width;
+  // Two threads: the caller does the contact and elements [0, split), the helper elements
+  // [split, ne) into its own force buffer (fixed split: the sums, hence the results, do not
+  // depend on timing).
+  std::unique_ptr<ForkJoin> fork;
+  int split = 0;
+  Eigen::VectorXd helper_force;
+  std::vector<ElementMatrix> tangents;  // want_tangent with two threads: scattered after the join
 
   explicit Impl(const ChainInput& in)
       : topo(make_chain_topology(in)),
         material(in.material),
-        points_per_element(in.integration == Integration::Reduced ? 4 : 9) {}
+        points_per_element(in.integration == Integration::Reduced ? 4 : 9),
+        updater(in.integration),
+        width(in.ring.width_m) {}
+
+  // Elements [e0, e1): force into `force` (all dofs), energies returned; the tangent goes
+  // straight into the system (serial) or into `tangents` (threads).
+  void elements(int e0, int e1, const Eigen::VectorXd& u, bool want_tangent, bool store_tangent, double* force,
+                double& elastic, double& plastic) {
+    Cps8Output eo;
+    double ue[16];
+    const int ppe = points_per_element;
+    elastic = plastic = 0;
+    const auto& elems = topo.mesh.elements;
+    for (int e = e0; e < e1; ++e) {
+      const auto& conn = elems[e];
+      for (int a = 0; a < 8; ++a) {
+        ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
+        ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
+      }
+      const std::size_t p0 = static_cast<std::size_t>(e) * ppe;
+      cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, want_tangent, eo);
+      for (int a = 0; a < 8; ++a) {
+        force[2 * conn[a]] += eo.force(2 * a);
+        force[2 * conn[a] + 1] += eo.force(2 * a + 1);
+      }
+      elastic += eo.elastic_energy;
+      plastic += eo.plastic_work;
+      if (want_tangent) {
+        if (store_tangent) tangents[e] = eo.tangent;
+        else system->add_element(e, eo.tangent.data());
+      }
+    }
+  }
+
+  // Geometry of elements [e0, e1) on the configuration X + u (kinematics.hpp).
+  void regeometry(int e0, int e1, const Eigen::VectorXd& u) {
+    const auto& mesh = topo.mesh;
+    for (int e = e0; e < e1; ++e) {
+      ElementCoords xe;
+      for (int a = 0; a < 8; ++a) {
+        const int n = mesh.elements[e][a];
+        xe(a, 0) = mesh.nodes[n].x() + u(2 * n);
+        xe(a, 1) = mesh.nodes[n].y() + u(2 * n + 1);
+      }
+      try {
+        updater.update(xe, width, geometry[e]);
+      } catch (const std::invalid_argument& err) {
+        throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh.element_ring[e] + 1, err.what()));
+      }
+    }
+  }
+
+  struct ElementJob {
+    Impl* model;
+    const Eigen::VectorXd* u;
+    bool want_tangent;
+    double elastic = 0, plastic = 0;
+    static void run(void* p) {
+      auto& j = *static_cast<ElementJob*>(p);
+      auto& m = *j.model;
+      m.helper_force.setZero();
+      m.elements(m.split, static_cast<int>(m.topo.mesh.elements.size()), *j.u, j.want_tangent, true,
+                 m.helper_force.data(), j.elastic, j.plastic);
+    }
+  };
+  struct GeometryJob {
+    Impl* model;
+    const Eigen::VectorXd* u;
+    static void run(void* p) {
+      auto& j = *static_cast<GeometryJob*>(p);
+      j.model->regeometry(j.model->split, static_cast<int>(j.model->topo.mesh.elements.size()), *j.u);
+    }
+  };
 };
+
+
 
 ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   impl_ = std::make_unique<Impl>(input);
@@ -147,6 +234,18 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
         passes.push_back(std::move(p));
   m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth);
   m.surface->set_mass(m.mass);
+  // Threads: automatic = two when the machine has two cores that are not already busy (on
+  // an oversubscribed machine the fork-join waits on the scheduler and runs slower than
+  // one thread) and the chain is big enough to pay for the join (~1 µs).
+  bool two = input.threads == 2;
+  if (input.threads == 0 && std::thread::hardware_concurrency() >= 2 && ne >= 64) {
+    double load[1] = {0};
+    two = getloadavg(load, 1) == 1 && load[0] < std::thread::hardware_concurrency() - 0.5;
+  }
+  // The caller also does the contact (~20 % of the element work on the thesis chain).
+  m.split = static_cast<int>(0.45 * ne);
+  m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
+  if (two) m.fork = std::make_unique<ForkJoin>();
   m.contributions.reserve(256);
   m.pressure.reserve(256);
 }
@@ -168,117 +267,126 @@ Eigen::VectorXd ChainModel::initial_velocity() const {
 void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) {
   Impl& m = *impl_;
   if (u.size() != dofs()) throw std::invalid_argument(fmt::format("ChainModel::evaluate: u has {} values, expected {}", u.size(), dofs()));
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t nn = mesh_.nodes.size();
-  for (std::size_t i = 0; i < nn; ++i) m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
-
-  // --- contact -------------------------------------------------------------------------
-  m.contributions.clear();
-  m.pressure.clear();
-  ChainContactForces& cf = m.forces;
-  cf = ChainContactForces{};
-  double contact_energy = 0;
-  const double depth = m.topo.ring.element_depth;
-  for (int i = 0; i < input_.rings; ++i) {
-    auto& b = m.ring_box[i];
-    b = {1e300, -1e300, 1e300, -1e300};
-    for (int n : mesh_.ring_outer_nodes[i]) {
-      b[0] = std::min(b[0], m.x[n].x()); b[1] = std::max(b[1], m.x[n].x());
-      b[2] = std::min(b[2], m.x[n].y()); b[3] = std::max(b[3], m.x[n].y());
-    }
-  }
-  for (int i = 0; i < input_.rings; ++i)
-    for (int j = i + 1; j < input_.rings; ++j) {
-      const auto &a = m.ring_box[i], &b = m.ring_box[j];
-      if (a[0] - depth <= b[1] && b[0] - depth <= a[1] && a[2] - depth <= b[3] && b[2] - depth <= a[3]) ++cf.pairs_checked;
-    }
-  m.face_near_omega2 = 0;
-  m.face_near_node = -1;
-  const RingMesh& r = m.topo.ring;
-  for (const RigidFace& face : m.faces) {
-    const double y_face = face.y_ref + (face.body_node >= 0 ? u(2 * face.body_node + 1) : 0.0);
-    const double inv_body = face.body_node >= 0 ? 1.0 / m.mass(2 * face.body_node + 1) : 0.0;
-    for (int ring : face.rings) {
-      const auto& b = m.ring_box[ring];
-      // Broad phase: the ring's outer box against the face, one element depth of margin.
-      if (face.dir > 0 ? b[2] > y_face + depth : b[3] < y_face - depth) continue;
-      const auto& map = m.topo.ring_node[ring];
-      for (std::size_t i = 0; i < r.outer_nodes.size(); ++i) {
-        const int node = map[r.outer_nodes[i]];
-        const double gap = face.dir * (m.x[node].y() - y_face);
-        if (gap >= depth) continue;
-        const double k = m.outer_k[i];
-        const double w2 = k * (1.0 / m.mass(2 * node + 1) + inv_body);
-        if (w2 > m.face_near_omega2) { m.face_near_omega2 = w2; m.face_near_node = node; }
-        if (gap >= 0) continue;
-        // Energy ½ k g²: ∂/∂y_s = k g dir, ∂/∂y_face = −k g dir.
-        ContactContribution& c = m.contributions.emplace_back();
-        c.nodes[0] = node;
-        c.force(1) = k * gap * face.dir;
-        if (face.body_node >= 0) {
-          c.count = 2;
-          c.nodes[1] = face.body_node;
-          c.force(3) = -k * gap * face.dir;
-          if (want_tangent) {
-            c.tangent(1, 1) = c.tangent(3, 3) = k;
-            c.tangent(1, 3) = c.tangent(3, 1) = -k;
-          }
-        } else {
-          c.count = 1;
-          if (want_tangent) c.tangent(1, 1) = k;
-        }
-        const double fn = -k * gap;
-        if (face.kind == RigidFace::Kind::Impactor) cf.impactor_n += fn;
-        if (face.kind == RigidFace::Kind::Target) cf.target_n += fn;
-        contact_energy += 0.5 * k * gap * gap;
-        cf.max_penetration_m = std::max(cf.max_penetration_m, -gap);
-        ++cf.active;
-        m.pressure.emplace_back(node, fn / m.outer_area[i]);
+  double contact_energy = 0, contact_time = 0;
+  // --- contact (on the calling thread, while the helper runs its share of the elements) ---
+  auto contact = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::size_t nn = mesh_.nodes.size();
+    for (std::size_t i = 0; i < nn; ++i) m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+    m.contributions.clear();
+    m.pressure.clear();
+    ChainContactForces& cf = m.forces;
+    cf = ChainContactForces{};
+    const double depth = m.topo.ring.element_depth;
+    for (int i = 0; i < input_.rings; ++i) {
+      auto& b = m.ring_box[i];
+      b = {1e300, -1e300, 1e300, -1e300};
+      for (int n : mesh_.ring_outer_nodes[i]) {
+        b[0] = std::min(b[0], m.x[n].x()); b[1] = std::max(b[1], m.x[n].x());
+        b[2] = std::min(b[2], m.x[n].y()); b[3] = std::max(b[3], m.x[n].y());
       }
     }
-  }
-  SurfaceContactState ss;
-  m.surface->evaluate(m.x, want_tangent, m.contributions, &m.pressure, ss);
-  cf.ring_ring_n = ss.ring_ring_force;
-  cf.candidate_pairs = static_cast<long>(m.surface->candidates());
-  cf.list_rebuilds = m.surface->rebuilds();
-  cf.self_n = ss.self_force;
-  cf.active += ss.active;
-  cf.max_penetration_m = std::max(cf.max_penetration_m, ss.max_penetration);
-  contact_energy += ss.energy;
-  m.surface_near_omega2 = ss.near_omega2;
-  m.surface_near_node = ss.near_node;
-  const auto t1 = std::chrono::steady_clock::now();
+    for (int i = 0; i < input_.rings; ++i)
+      for (int j = i + 1; j < input_.rings; ++j) {
+        const auto &a = m.ring_box[i], &b = m.ring_box[j];
+        if (a[0] - depth <= b[1] && b[0] - depth <= a[1] && a[2] - depth <= b[3] && b[2] - depth <= a[3]) ++cf.pairs_checked;
+      }
+    m.face_near_omega2 = 0;
+    m.face_near_node = -1;
+    const RingMesh& r = m.topo.ring;
+    for (const RigidFace& face : m.faces) {
+      const double y_face = face.y_ref + (face.body_node >= 0 ? u(2 * face.body_node + 1) : 0.0);
+      const double inv_body = face.body_node >= 0 ? 1.0 / m.mass(2 * face.body_node + 1) : 0.0;
+      for (int ring : face.rings) {
+        const auto& b = m.ring_box[ring];
+        // Broad phase: the ring's outer box against the face, one element depth of margin.
+        if (face.dir > 0 ? b[2] > y_face + depth : b[3] < y_face - depth) continue;
+        const auto& map = m.topo.ring_node[ring];
+        for (std::size_t i = 0; i < r.outer_nodes.size(); ++i) {
+          const int node = map[r.outer_nodes[i]];
+          const double gap = face.dir * (m.x[node].y() - y_face);
+          if (gap >= depth) continue;
+          const double k = m.outer_k[i];
+          const double w2 = k * (1.0 / m.mass(2 * node + 1) + inv_body);
+          if (w2 > m.face_near_omega2) { m.face_near_omega2 = w2; m.face_near_node = node; }
+          if (gap >= 0) continue;
+          // Energy ½ k g²: ∂/∂y_s = k g dir, ∂/∂y_face = −k g dir.
+          ContactContribution& c = m.contributions.emplace_back();
+          c.nodes[0] = node;
+          c.force(1) = k * gap * face.dir;
+          if (face.body_node >= 0) {
+            c.count = 2;
+            c.nodes[1] = face.body_node;
+            c.force(3) = -k * gap * face.dir;
+            if (want_tangent) {
+              c.tangent(1, 1) = c.tangent(3, 3) = k;
+              c.tangent(1, 3) = c.tangent(3, 1) = -k;
+            }
+          } else {
+            c.count = 1;
+            if (want_tangent) c.tangent(1, 1) = k;
+          }
+          const double fn = -k * gap;
+          if (face.kind == RigidFace::Kind::Impactor) cf.impactor_n += fn;
+          if (face.kind == RigidFace::Kind::Target) cf.target_n += fn;
+          contact_energy += 0.5 * k * gap * gap;
+          cf.max_penetration_m = std::max(cf.max_penetration_m, -gap);
+          ++cf.active;
+          m.pressure.emplace_back(node, fn / m.outer_area[i]);
+        }
+      }
+    }
+    SurfaceContactState ss;
+    m.surface->evaluate(m.x, want_tangent, m.contributions, &m.pressure, ss);
+    cf.ring_ring_n = ss.ring_ring_force;
+    cf.candidate_pairs = static_cast<long>(m.surface->candidates());
+    cf.list_rebuilds = m.surface->rebuilds();
+    cf.self_n = ss.self_force;
+    cf.active += ss.active;
+    cf.max_penetration_m = std::max(cf.max_penetration_m, ss.max_penetration);
+    contact_energy += ss.energy;
+    m.surface_near_omega2 = ss.near_omega2;
+    m.surface_near_node = ss.near_node;
+    contact_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
 
   // --- elements ------------------------------------------------------------------------
-  if (want_tangent) {
-    // New contact couplings grow the pattern before anything is written into it.
+  // New contact couplings grow the pattern before anything is written into it.
+  auto prepare_tangent = [&] {
     for (const auto& c : m.contributions)
       if (c.count > 1) m.system->ensure_coupled(c.nodes.data(), c.count);
     m.system->zero();
-  }
+  };
   if (out.force.size() != dofs()) out.force.resize(dofs());
   out.force.setZero();
   double elastic = 0, plastic = 0;
-  Cps8Output eo;
-  double ue[16];
-  const int ppe = m.points_per_element;
-  for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
-    const auto& conn = mesh_.elements[e];
-    for (int a = 0; a < 8; ++a) {
-      ue[2 * a] = u(2 * conn[a]) - m.u_n(2 * conn[a]);
-      ue[2 * a + 1] = u(2 * conn[a] + 1) - m.u_n(2 * conn[a] + 1);
+  const int ne = static_cast<int>(mesh_.elements.size());
+  // Two partial sums, elements [0, split) and [split, ne), on one thread or two: the same
+  // arithmetic either way, so the result does not depend on the threads.
+  double helper_elastic = 0, helper_plastic = 0;
+  if (m.fork) {
+    if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
+    Impl::ElementJob job{&m, &u, want_tangent};
+    m.fork->run(&Impl::ElementJob::run, &job, [&] {
+      contact();
+      m.elements(0, m.split, u, want_tangent, true, out.force.data(), elastic, plastic);
+    });
+    helper_elastic = job.elastic;
+    helper_plastic = job.plastic;
+    if (want_tangent) {
+      prepare_tangent();
+      for (int e = 0; e < ne; ++e) m.system->add_element(e, m.tangents[e].data());
     }
-    const std::size_t p0 = e * ppe;
-    cps8_evaluate(m.geometry[e], ue, &m.committed[p0], &m.trial[p0], m.material, want_tangent, eo);
-    for (int a = 0; a < 8; ++a) {
-      out.force(2 * conn[a]) += eo.force(2 * a);
-      out.force(2 * conn[a] + 1) += eo.force(2 * a + 1);
-    }
-    elastic += eo.elastic_energy;
-    plastic += eo.plastic_work;
-    if (want_tangent) m.system->add_element(static_cast<int>(e), eo.tangent.data());
+  } else {
+    contact();
+    if (want_tangent) prepare_tangent();
+    m.elements(0, m.split, u, want_tangent, false, out.force.data(), elastic, plastic);
+    m.helper_force.setZero();
+    m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), helper_elastic, helper_plastic);
   }
+  out.force += m.helper_force;
+  elastic += helper_elastic;
+  plastic += helper_plastic;
   for (const auto& c : m.contributions) {
     for (int a = 0; a < c.count; ++a) {
       out.force(2 * c.nodes[a]) += c.force(2 * a);
@@ -289,7 +397,7 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   out.elastic_energy = elastic;
   out.plastic_work = plastic;
   out.contact_energy = contact_energy;
-  out.contact_time_s = std::chrono::duration<double>(t1 - t0).count();
+  out.contact_time_s = contact_time;
   m.u_last = u;
   m.trial_fresh = true;
 }
@@ -303,19 +411,12 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   m.trial_fresh = false;
   m.u_n = u;
   // The next increment is described on this configuration (kinematics.hpp).
-  const double width = input_.ring.width_m;
-  for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
-    ElementCoords xe;
-    for (int a = 0; a < 8; ++a) {
-      const int n = mesh_.elements[e][a];
-      xe(a, 0) = mesh_.nodes[n].x() + u(2 * n);
-      xe(a, 1) = mesh_.nodes[n].y() + u(2 * n + 1);
-    }
-    try {
-      m.geometry[e] = cps8_geometry(xe, input_.integration, width);
-    } catch (const std::invalid_argument& err) {
-      throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
-    }
+  const int ne = static_cast<int>(mesh_.elements.size());
+  if (m.fork) {
+    Impl::GeometryJob job{&m, &u};
+    m.fork->run(&Impl::GeometryJob::run, &job, [&] { m.regeometry(0, m.split, u); });
+  } else {
+    m.regeometry(0, ne, u);
   }
 }
 

@@ -108,13 +108,13 @@ bool surface_gap(const PiecePolynomial& p, const double* xy, unsigned char symme
     if (moved < 1e-14) break;
   }
   cubic.at(f, pos, tan, curv);
-  const double tl = std::hypot(tan[0], tan[1]);
+  const double tl = std::sqrt(tan[0] * tan[0] + tan[1] * tan[1]);
   if (!(tl > 0)) return false;
   const double nx = -tan[1] / tl, ny = tan[0] / tl;
   gap = (xs - pos[0]) * nx + (ys - pos[1]) * ny;
   if (!strict) return true;
   const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
-  const double scale = tl * std::hypot(pos[0] - xs, pos[1] - ys);
+  const double scale = tl * std::sqrt((pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys));
   const double tol = 1e-9 * (p.hi - p.lo);
   if (f <= p.lo + tol && r > 1e-9 * scale && !(symmetric_end & 1)) return false;  // minimum before the piece
   if (f >= p.hi - tol && r < -1e-9 * scale && !(symmetric_end & 2)) return false;  // minimum after it
@@ -127,7 +127,7 @@ void surface_force(const PiecePolynomial& p, const double* xy, double k, double 
   if (!(gap < 0)) return;
   double pos[2], tan[2], curv[2];
   Cubic(p, xy).at(f, pos, tan, curv);
-  const double tl = std::hypot(tan[0], tan[1]);
+  const double tl = std::sqrt(tan[0] * tan[0] + tan[1] * tan[1]);
   const double nx = -tan[1] / tl, ny = tan[0] / tl;
   // ∂(½ k g²)/∂x_s = k g n and ∂/∂x_a = −k g c_a n: the terms through f and n vanish at the
   // closest point ((x_s − x)·x' = 0, n·∂n = 0). Σ over all nodes is zero: action = reaction.
@@ -232,7 +232,7 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
 }
 
 SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
-    : passes_(std::move(passes)), depth_(depth), skin_(0.5 * depth) {
+    : passes_(std::move(passes)), depth_(depth), skin_(0.25 * depth) {
   if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
   for (const auto& p : passes_) {
     for (int s : p.slaves) tracked_.push_back(s);

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "fe/chain/chain_model.hpp"
+#include "fe/chain/geometry_update.hpp"
 
 using namespace ringcrush::fe;
 
@@ -285,5 +286,56 @@ TEST(ChainModel, StableStepBoundsTheHighestFrequency) {
       EXPECT_LE(bound, 2 * truth) << s.limited_by;
       EXPECT_FALSE(s.limited_by.empty());
     }
+  }
+}
+
+TEST(ChainModel, TwoThreadsGiveTheSerialResult) {
+  for (Integration rule : {Integration::Reduced, Integration::Selective}) {
+    ChainInput in = chain(2, JointKind::Free);
+    in.fixed_target = true;
+    in.integration = rule;
+    in.threads = 1;
+    ChainModel serial(in);
+    in.threads = 2;
+    ChainModel threaded(in);
+    Eigen::VectorXd u = busy_state(serial, 5);
+    for (int step = 0; step < 2; ++step) {
+      SystemEvaluation a, b;
+      serial.evaluate(u, true, a);
+      threaded.evaluate(u, true, b);
+      // Bitwise: the same partial sums in the same order.
+      EXPECT_EQ(a.force, b.force);
+      EXPECT_EQ(a.elastic_energy, b.elastic_energy);
+      EXPECT_EQ(Eigen::MatrixXd(serial.tangent_system().matrix()), Eigen::MatrixXd(threaded.tangent_system().matrix()));
+      serial.commit(u);
+      threaded.commit(u);
+      u *= 1.5;  // the next increment starts from the committed configuration
+    }
+  }
+}
+
+TEST(ChainModel, GeometryUpdateEqualsCps8Geometry) {
+  ElementCoords x;
+  const double c[8][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+  for (int k = 0; k < 8; ++k) {
+    x(k, 0) = 2e-3 * c[k][0] + 3e-4 * c[k][1] * c[k][1] + 1.0;
+    x(k, 1) = 8e-4 * c[k][1] + 1e-4 * c[k][0] * c[k][1] - 0.5;
+  }
+  ElementCoords x0 = x;
+  x0.col(0) *= 1.1;
+  for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective}) {
+    Cps8Geometry geo = cps8_geometry(x0, rule, 0.0125);
+    Cps8GeometryUpdater(rule).update(x, 0.0125, geo);
+    const Cps8Geometry ref = cps8_geometry(x, rule, 0.0125);
+    for (int i = 0; i < ref.points; ++i) {
+      EXPECT_LT((geo.dndx[i] - ref.dndx[i]).norm(), 1e-12 * ref.dndx[i].norm());
+      EXPECT_NEAR(geo.weight[i], ref.weight[i], 1e-14 * ref.weight[i]);
+    }
+    if (rule == Integration::Selective) {
+      for (int r = 0; r < 4; ++r) EXPECT_LT((geo.dndx_reduced[r] - ref.dndx_reduced[r]).norm(), 1e-12 * ref.dndx_reduced[r].norm());
+    }
+    ElementCoords inverted = x;
+    inverted.col(0) *= -1;
+    EXPECT_THROW(Cps8GeometryUpdater(rule).update(inverted, 0.0125, geo), std::invalid_argument);
   }
 }

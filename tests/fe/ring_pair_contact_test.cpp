@@ -115,10 +115,11 @@ TEST(RingPairContact, CandidateListGivesTheBruteForceResult) {
   SurfaceContact stale(s.passes, s.t.ring.element_depth);
   std::vector<ContactContribution> out;
   SurfaceContactState st;
-  // Build the list at a first configuration, then move every node by less than the skin.
-  stale.evaluate(positions(s.t, 1, 0.1e-3, 0.0, 2), false, out, nullptr, st);
+  // Build the list at a first configuration, then move every node by less than the skin
+  // (0.25 of the wall depth, 0.4 mm).
+  stale.evaluate(positions(s.t, 1, 0.25e-3, 0.0, 2), false, out, nullptr, st);
   const long builds = stale.rebuilds();
-  const auto x = positions(s.t, 1, 0.35e-3, 0.15e-3, 3);
+  const auto x = positions(s.t, 1, 0.35e-3, 0.1e-3, 3);
   out.clear();
   stale.evaluate(x, true, out, nullptr, st);
   EXPECT_EQ(stale.rebuilds(), builds) << "moved less than the skin: no rebuild";
