@@ -144,7 +144,9 @@ class DynamicRun {
     if (!(ke0 > 0)) throw std::invalid_argument("dynamic run: the initial kinetic energy is zero (impactor velocity 0?)");
     res.history.push_back(row(d));
     const double end = solver_.end_time_s;
-    double frame_interval = solver_.frames > 0 ? end / solver_.frames : INFINITY;
+    // Frames start 16× denser than `frames` over the end time and thin out by halves (below),
+    // so a run that arrests long before the end time still gets `frames`..2·`frames` of them.
+    double frame_interval = solver_.frames > 0 ? end / (16.0 * solver_.frames) : INFINITY;
     double next_frame = frame_interval;
     if (solver_.frames > 0) res.frames.push_back(frame(0, d.displacement()));
     double next_output = solver_.output_interval_s;

@@ -46,7 +46,10 @@ struct DynamicRow {
   double impactor_velocity_m_s = 0;    // positive toward the chain
   double impactor_force_n = 0;         // contact force on the impactor (whole chain)
   std::vector<double> ring_crush_m;    // δ_i = H0 − H_i
-  // Whole-chain energies (J); numerical = KE0 + external − (kinetic + elastic + plastic + contact).
+  // Whole-chain energies (J), definitions in energy_balance.hpp: numerical = KE0 + external −
+  // kinetic − W_f, with W_f the trapezoidal work of the internal + contact forces over the
+  // steps; it equals KE0 + external − (kinetic + elastic + plastic + contact) up to the
+  // energy balance error (elastic + plastic + contact − W_f).
   double kinetic_j = 0, elastic_j = 0, plastic_j = 0, contact_j = 0, numerical_j = 0, external_work_j = 0;
   double step_s = 0;
 };
@@ -72,7 +75,7 @@ struct DynamicResult {
   Eigen::VectorXd final_displacement;
   std::vector<double> max_peeq_per_ring;
   double initial_kinetic_j = 0;          // whole chain
-  double energy_balance_error = 0;       // max over the run of |balance error| / KE0
+  double energy_balance_error = 0;       // max over the run of |elastic + plastic + contact − W_f| / KE0
   double numerical_dissipation = 0;      // final numerical_j / KE0 (HHT > 0; explicit ≈ 0)
   std::string end_reason;                // "arrest", "end_time", ...
   DynamicStatistics statistics;

@@ -55,17 +55,21 @@ void ExplicitDriver::fail(const std::string& what, int dof) const {
 void ExplicitDriver::bound_step() {
   const StableStep s = sys_.stable_step(u_);
   if (!(s.step_s > 0) || !std::isfinite(s.step_s)) fail(fmt::format("stable step {} is not positive", s.step_s), -1);
-  const double old = dt_target_;
-  const std::string old_by = limited_by_;
   dt_stable_ = s.step_s;
   limited_by_ = s.limited_by;
   dt_target_ = std::min(opt_.safety * s.step_s, opt_.max_step_s);
   if (opt_.safety * s.step_s > opt_.max_step_s) limited_by_ = "max_step_s";
   rebound_ = false;
   since_bound_ = 0;
-  if (log && (old_by != limited_by_ || std::abs(dt_target_ - old) > 0.1 * old))
+  // Log when the kind of limit changes (element / contact / cap) or the step moved by more
+  // than 10 % since the last line: contact nodes come and go every few steps.
+  const std::string kind = limited_by_.substr(0, limited_by_.find(' '));
+  if (log && (kind != logged_kind_ || std::abs(dt_target_ - logged_dt_) > 0.1 * logged_dt_)) {
     log(fmt::format("explicit: t = {:.6g} s, Δt = {:.4g} s ({} × 2/ω_max = {:.4g} s, limited by {})", t_, dt_target_,
                     opt_.safety, dt_stable_, limited_by_));
+    logged_kind_ = kind;
+    logged_dt_ = dt_target_;
+  }
 }
 
 void ExplicitDriver::step(double t_limit) {

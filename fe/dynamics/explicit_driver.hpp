@@ -80,7 +80,8 @@ class ExplicitDriver {
   SystemEvaluation ev_;
   EnergyBalance energy_;
   double t_ = 0, dt_ = 0, dt_stable_ = 0, dt_target_ = 0;
-  std::string limited_by_;
+  std::string limited_by_, logged_kind_;
+  double logged_dt_ = 0;
   bool rebound_ = true;
   long steps_ = 0, since_bound_ = 0, evaluations_ = 0;
   double min_dt_ = 0, max_dt_ = 0, contact_time_ = 0;

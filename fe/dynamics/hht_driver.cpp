@@ -125,7 +125,12 @@ HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::Vector
   SparseSystem& s = sys_.tangent_system();
   for (int it = 0;; ++it) {
     u = u_ + du_;
-    sys_.evaluate(u, true, ev_trial_);
+    double incr = 0;
+    for (int d : free_) incr = std::max(incr, std::abs(du_(d)));
+    // When the last correction already passes its test, this iteration most likely
+    // converges: evaluate the force alone and assemble the tangent only if it does not.
+    const bool correction_passed = last_correction <= opt_.correction_tolerance * std::max(incr, 1e-300);
+    sys_.evaluate(u, !correction_passed, ev_trial_);
     contact_time_ += ev_trial_.contact_time_s;
     a = c0 * (du_ - du_star);
     for (int d : free_) r_(d) = mass_(d) * a(d) + (1 + opt_.alpha) * ev_trial_.force(d) - opt_.alpha * ev_.force(d);
@@ -138,10 +143,7 @@ HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::Vector
       out.reason = "non-finite residual";
       return out;
     }
-    double incr = 0;
-    for (int d : free_) incr = std::max(incr, std::abs(du_(d)));
-    if (rmax <= opt_.ptol_n &&
-        (last_correction <= opt_.correction_tolerance * std::max(incr, 1e-300) || rmax <= 1e-3 * opt_.ptol_n)) {
+    if (rmax <= opt_.ptol_n && (correction_passed || rmax <= 1e-3 * opt_.ptol_n)) {
       out.converged = true;
       for (int d : sys_.fixed_dofs()) a(d) = 0;
       return out;
@@ -155,6 +157,10 @@ HhtDriver::Newton HhtDriver::newton(double dt, Eigen::VectorXd& u, Eigen::Vector
       return out;
     }
     previous = rmax;
+    if (correction_passed) {
+      sys_.evaluate(u, true, ev_trial_);
+      contact_time_ += ev_trial_.contact_time_s;
+    }
     add_mass_to_tangent(c0);
     if (!solver_->factorize(s.matrix(), s.pattern_version())) {
       out.reason = "effective tangent could not be factorised";

@@ -248,6 +248,42 @@ TEST(DynamicChain, NumericalDissipationOfAnImpactHht) {
   EXPECT_LT(r.history.back().impactor_velocity_m_s, 29.0);
 }
 
+TEST(DynamicChain, HhtAndExplicitAgreeOnACoarseImpact) {
+  // Verification f in small: the same impact (two welded coarse rings, 0.4 ms) by both
+  // integrators; crush of each ring within 10 % of ring 1's, impactor speed within 2 %.
+  DynamicSolverInput s;
+  s.end_time_s = 4e-4;
+  s.frames = 0;
+  s.scheme = DynamicScheme::Explicit;
+  const DynamicResult e = run_dynamic(coarse_impact(), s);
+  s.scheme = DynamicScheme::Hht;
+  const DynamicResult h = run_dynamic(coarse_impact(), s);
+  const auto &ce = e.history.back().ring_crush_m, &ch = h.history.back().ring_crush_m;
+  ASSERT_GT(ce[0], 2e-3);
+  for (std::size_t i = 0; i < ce.size(); ++i) EXPECT_NEAR(ch[i], ce[i], 0.1 * ce[0]) << "ring " << i + 1;
+  EXPECT_NEAR(h.history.back().impactor_velocity_m_s, e.history.back().impactor_velocity_m_s,
+              0.02 * e.history.back().impactor_velocity_m_s);
+}
+
+TEST(DynamicChain, ArrestEndsTheRun) {
+  // One coarse ring hit at 2 m/s: the impactor stops and rebounds, the ring comes to rest.
+  ChainInput in = coarse(1, JointKind::Welded);
+  in.impactor_velocity_m_s = 2;
+  DynamicSolverInput s;
+  s.scheme = DynamicScheme::Explicit;
+  s.end_time_s = 0.02;
+  s.frames = 0;
+  s.rest_kinetic_fraction = 0.05;
+  const DynamicResult r = run_dynamic(in, s);
+  EXPECT_EQ(r.end_reason, "arrest");
+  EXPECT_LT(r.history.back().time_s, 0.02);
+  EXPECT_LE(r.history.back().impactor_velocity_m_s, 0.0);
+  // Everything but the impactor holds less than 5 % of KE0.
+  const double ke_impactor = 0.5 * in.impactor_mass_kg * std::pow(r.history.back().impactor_velocity_m_s, 2);  // whole chain
+  EXPECT_LT(r.history.back().kinetic_j - ke_impactor, 0.05 * r.initial_kinetic_j);
+  EXPECT_LT(r.energy_balance_error, 0.01);
+}
+
 TEST(DynamicChain, EnergyLimitStopsTheRun) {
   DynamicSolverInput s;
   s.scheme = DynamicScheme::Explicit;
