@@ -105,3 +105,18 @@ TEST(DeckScene, DeckThatIsNotARingChainIsRefused) {
       "*MATERIAL,NAME=S\n*ELASTIC\n2.E11,.3\n";
   EXPECT_THROW(fd::deck_parameters(fd::read_deck(quad)), std::invalid_argument);
 }
+
+TEST(DeckScene, ElementWithAllCornersOnOneRadiusIsRefusedNotDividedByZero) {
+  // Radial edges 1–2 and 3–4 meet at the origin, but all four corners lie at radius 1: zero
+  // elements through the wall (a division by zero before the guard in deck_parameters).
+  const std::string flat =
+      "*NODE\n1,1.,0.\n2,-1.,0.\n3,0.,1.\n4,0.,-1.\n5,1.E-9,1.E-9\n6,-0.5,0.8\n7,1.E-9,-1.E-9\n8,0.5,-0.8\n"
+      "*ELEMENT,TYPE=CPS8,ELSET=E\n1,1,2,3,4,5,6,7,8\n*SOLID SECTION,ELSET=E,MATERIAL=S\n1.\n"
+      "*MATERIAL,NAME=S\n*ELASTIC\n2.E11,.3\n*STEP\n*STATIC\n1.,1.\n*END STEP\n";
+  try {
+    fd::deck_parameters(fd::read_deck(flat));
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no wall"), std::string::npos) << e.what();
+  }
+}
