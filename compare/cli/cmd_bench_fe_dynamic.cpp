@@ -59,11 +59,14 @@ struct CaseOutcome {
   bool has_result = false;
 };
 
-CaseOutcome run_case(const std::string& name, const Scene& s) {
+// threads: the element-loop threads of the chain (0 automatic; 1 when cases run in parallel).
+CaseOutcome run_case(const std::string& name, const Scene& s, int threads = 0) {
   CaseOutcome o;
   o.name = name;
   try {
-    o.result = fe::run_dynamic(fe_chain_input(s), fe_dynamic_solver_input(s));
+    fe::ChainInput chain = fe_chain_input(s);
+    chain.threads = threads;
+    o.result = fe::run_dynamic(chain, fe_dynamic_solver_input(s));
     o.run = fe_dynamic_run_result(s, o.result);  // refuses a non-finite result
     o.has_result = true;
     o.reason = o.result.end_reason;
@@ -213,7 +216,7 @@ void matrix_part(const BenchOptions& o, ResultsDir& out) {
   std::mutex print_mutex;
   auto worker = [&] {
     for (std::size_t k = next++; k < cases.size(); k = next++) {
-      outcomes[k] = run_case(cases[k].name, cases[k].scene);
+      outcomes[k] = run_case(cases[k].name, cases[k].scene, o.jobs > 1 ? 1 : 0);
       const auto& c = outcomes[k];
       std::lock_guard lock(print_mutex);
       if (c.has_result)
