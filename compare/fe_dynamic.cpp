@@ -115,6 +115,7 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   in.impactor_mass_kg = s.impactor->mass_kg;
   in.impactor_velocity_m_s = s.impactor->velocity_m_s;
   in.fixed_target = s.far_end == FarEnd::Fixed;
+  fe::validate(in);
   return in;
 }
 

@@ -9,6 +9,13 @@
 // contact check, one updating progress line, then the peak load and the run statistics.
 // A failed solve prints its diagnosis, exits 1 and leaves no results directory.
 //
+//   ringcrush fe data/scenes/thesis_dynamic.toml -o results/thesis_dynamic [--solver explicit]
+//
+// A dynamic scene (issue 4; thesis §3.5, §4.2) runs the ring chain under impact with the
+// explicit central-difference or the HHT-α driver until the impactor stops or rebounds and
+// the rings are at rest, and writes summary.json, history.csv, rings.csv, SVG plots and
+// ParaView frames (compare/fe_dynamic.hpp). --solver and --elements-around override the scene.
+//
 // ringcrush bench-fe-static [SCENE] — the performance and mesh-convergence benchmark of the
 // static crush (README "Measured results"): the scene on its own mesh, on a 4× finer mesh
 // (2× around, 2× through), and a mesh convergence study of the load at δ/d = 0.3, 0.6
@@ -21,6 +28,8 @@
 #include <cstdio>
 
 #include "compare/cli/commands.hpp"
+#include "compare/cli/fe_dynamic_terminal.hpp"
+#include "compare/fe_dynamic.hpp"
 #include "compare/fe_static.hpp"
 #include "compare/results_dir.hpp"
 
@@ -31,6 +40,8 @@ struct FeOptions {
   std::string scene;
   std::string output;
   bool quiet = false;
+  std::string solver;       // "explicit" | "hht": overrides fe.solver of a dynamic scene
+  int elements_around = 0;  // > 0: overrides fe.elements_around
 };
 
 const char* integration_name(fe::Integration i) {
@@ -73,17 +84,47 @@ void echo(const Scene& s, const fe::FeInput& in) {
              in.solver.max_increment, in.solver.force_tolerance_n, in.solver.max_iterations);
 }
 
+// The scene with the command-line overrides applied.
+Scene scene_with_overrides(const FeOptions& o) {
+  Scene s = load_scene(o.scene);
+  if (o.elements_around > 0) {
+    if (o.elements_around % 2 != 0)
+      throw std::invalid_argument(fmt::format("ringcrush fe: --elements-around {} must be even", o.elements_around));
+    s.fe.elements_around = o.elements_around;
+  }
+  if (!o.solver.empty()) {
+    if (s.analysis.type == AnalysisType::Static)
+      throw std::invalid_argument("ringcrush fe: --solver applies to dynamic scenes only");
+    s.fe.solver = o.solver == "hht" ? FeSolver::Hht : FeSolver::Explicit;
+  }
+  return s;
+}
+
+void run_fe_dynamic(const Scene& s, const FeOptions& o) {
+  const fe::ChainInput chain = fe_chain_input(s);
+  const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
+  if (!o.quiet) {
+    echo_dynamic(s, chain, solver);
+    std::fflush(stdout);  // the echo before the progress line on stderr
+  }
+  ResultsDir out(o.output);
+  const fe::DynamicResult r = fe::run_dynamic(chain, solver, dynamic_terminal_callbacks(o.quiet));
+  const RunResult run = fe_dynamic_run_result(s, r);
+  write_fe_dynamic_outputs(s, r, run, out);
+  out.commit();
+  if (!o.quiet) print_dynamic_result(s, r, run);
+  fmt::print("wrote {}\n", out.target().string());
+}
+
 void run_fe(const FeOptions& o) {
-  const Scene s = load_scene(o.scene);
-  if (s.analysis.type != AnalysisType::Static)
-    throw std::invalid_argument("ringcrush fe: dynamic FE analyses (HHT-alpha, explicit) are not built yet; "
-                                "this FE core runs static scenes");
+  const Scene s = scene_with_overrides(o);
+  if (o.output.empty()) throw std::invalid_argument("ringcrush fe: -o DIR is required");
+  if (s.analysis.type == AnalysisType::Dynamic) return run_fe_dynamic(s, o);
   const fe::FeInput in = fe_static_input(s);
   if (!o.quiet) {
     echo(s, in);
     std::fflush(stdout);  // the echo before the progress line on stderr
   }
-  if (o.output.empty()) throw std::invalid_argument("ringcrush fe: -o DIR is required");
   ResultsDir out(o.output);
   const fe::StaticResult r = fe::run_static(in, terminal_callbacks(o.quiet));
   const RunResult run = fe_static_run_result(s, r);
@@ -102,10 +143,15 @@ void run_fe(const FeOptions& o) {
 
 void add_fe_command(CLI::App& app) {
   auto o = std::make_shared<FeOptions>();
-  auto* cmd = app.add_subcommand("fe", "CPS8 finite-element model of a scene (static crush; thesis §3.4, §3.6)");
+  auto* cmd = app.add_subcommand(
+      "fe", "CPS8 finite-element model of a scene (static crush, thesis §3.4, §3.6; impact of a chain, §3.5, §4.2)");
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)")->required();
   cmd->add_flag("-q,--quiet", o->quiet, "No progress or echo on the terminal");
+  cmd->add_option("--solver", o->solver, "Dynamic scenes: override fe.solver")
+      ->check(CLI::IsMember({"explicit", "hht"}));
+  cmd->add_option("--elements-around", o->elements_around, "Override fe.elements_around (per half ring, even)")
+      ->check(CLI::Range(8, 4096));
   cmd->callback([o] { run_fe(*o); });
 }
 

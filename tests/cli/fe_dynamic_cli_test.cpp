@@ -1,0 +1,151 @@
+// End to end: `ringcrush fe SCENE -o DIR` on a cheap dynamic scene (the thesis chain cut to
+// three rings on a coarse mesh, a short end time) writes the results directory of issue 4
+// item 7; the --solver and --elements-around overrides reach the run; scenes the dynamic FE
+// does not cover exit 2; a run stopped by its energy limit exits 1 with the diagnosis and
+// leaves no results directory; `bench-fe-dynamic --quick` writes its tables.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct CommandRun {
+  int status;
+  std::string output;
+};
+
+CommandRun ringcrush(const std::string& args) {
+  const std::string cmd = std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed");
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
+  const int raw = pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("ringcrush_fe_dynamic_cli_test_" + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The thesis dynamic chain, cheap: 3 rings, 12 elements per half ring, 0.4 ms, 3 frames.
+fs::path cheap_scene(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& more = {}) {
+  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_dynamic.toml");
+  std::vector<std::pair<std::string, std::string>> repl{{"count = 6", "count = 3"},
+                                                        {"elements_around = 48", "elements_around = 12"},
+                                                        {"end_time_s = 0\\.05", "end_time_s = 0.0004"},
+                                                        {"frames = 20", "frames = 3"},
+                                                        {"solver = \"hht\"", "solver = \"explicit\""}};
+  repl.insert(repl.end(), more.begin(), more.end());
+  for (const auto& [pattern, value] : repl) text = std::regex_replace(text, std::regex(pattern), value);
+  const fs::path p = dir / "scene.toml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::size_t data_rows(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += !line.empty();
+  return n - 1;
+}
+}  // namespace
+
+TEST(FeDynamicCli, CheapChainWritesTheResultsDirectory) {
+  const fs::path dir = scratch("ok");
+  const fs::path out = dir / "out";
+  const auto r = ringcrush("fe " + cheap_scene(dir).string() + " -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"summary.json", "history.csv", "rings.csv", "series.pvd", "crush_per_ring.svg",
+                        "impactor.svg", "force.svg", "energy.svg", "frames/frame_0000.vtu"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto j = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(j["model"], "fe");
+  EXPECT_EQ(j["analysis"], "dynamic");
+  EXPECT_EQ(j["solver"], "explicit");
+  EXPECT_EQ(j["crush_ratio"].size(), 3u);
+  EXPECT_EQ(j["wrap_around"].size(), 3u);
+  for (const char* k : {"alternation_index", "energy_balance_error", "arrest_time_s", "peak_force_N",
+                        "impactor_final_velocity_m_s", "numerical_dissipation", "end_reason"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["mesh"]["elements"], 3 * 12);
+  // The impactor has hit ring 1 in 0.4 ms at 30 m/s: a force, and ring 1 crushed most.
+  EXPECT_GT(j["peak_force_N"].get<double>(), 0.0);
+  EXPECT_GT(j["crush_ratio"][0].get<double>(), j["crush_ratio"][2].get<double>());
+  EXPECT_GE(data_rows(out / "history.csv"), 2u);
+  EXPECT_EQ(data_rows(out / "rings.csv"), 3u);
+  EXPECT_NE(r.output.find("explicit central difference"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("alternation index"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("end: "), std::string::npos) << r.output;
+}
+
+TEST(FeDynamicCli, OverridesReachTheRun) {
+  const fs::path dir = scratch("override");
+  const fs::path out = dir / "out";
+  const auto r = ringcrush("fe " + cheap_scene(dir, {{"end_time_s = 0\\.0004", "end_time_s = 0.0001"}}).string() +
+                           " --solver hht --elements-around 10 -q -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto j = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(j["solver"], "hht");
+  EXPECT_EQ(j["mesh"]["elements"], 3 * 10);
+}
+
+TEST(FeDynamicCli, RefusedScenesExitTwo) {
+  const fs::path dir = scratch("refused");
+  const auto friction = ringcrush("fe " + cheap_scene(dir, {{"\\[fe\\]", "[fe]\nfriction_coefficient = 0.1"}}).string() +
+                                  " -o " + (dir / "out").string());
+  EXPECT_EQ(friction.status, 2) << friction.output;
+  EXPECT_NE(friction.output.find("friction"), std::string::npos) << friction.output;
+  const auto odd = ringcrush("fe " + cheap_scene(dir).string() + " --elements-around 11 -o " + (dir / "out").string());
+  EXPECT_EQ(odd.status, 2) << odd.output;
+  const auto static_solver = ringcrush("fe " + std::string(RINGCRUSH_SOURCE_DIR) +
+                                       "/data/scenes/thesis_static.toml --solver hht -o " + (dir / "out").string());
+  EXPECT_EQ(static_solver.status, 2) << static_solver.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(FeDynamicCli, EnergyLimitStopExitsOneAndLeavesNoResults) {
+  const fs::path dir = scratch("fail");
+  const fs::path out = dir / "out";
+  // A limit no real run meets: the driver must stop with a named reason.
+  const auto r = ringcrush("fe " + cheap_scene(dir, {{"\\[fe\\]", "[fe]\nenergy_error_limit = 1e-14"}}).string() +
+                           " -o " + out.string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("energy"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".out.partial"), std::string::npos) << e.path();
+}
+
+TEST(FeDynamicCli, QuickBenchmarkWritesItsTables) {
+  const fs::path dir = scratch("bench");
+  const fs::path out = dir / "out";
+  const auto r = ringcrush("bench-fe-dynamic --quick " + std::string(RINGCRUSH_SOURCE_DIR) +
+                           "/data/scenes/thesis_dynamic.toml -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(data_rows(out / "thesis.csv"), 3u);     // explicit, hht, plates
+  EXPECT_EQ(data_rows(out / "matrix.csv"), 6u);     // 2 drivers × 3 joints
+  EXPECT_TRUE(fs::exists(out / "agreement.csv")) << r.output;
+  const std::string matrix = read_text(out / "matrix.csv");
+  EXPECT_FALSE(std::regex_search(matrix, std::regex("\\bnan\\b", std::regex::icase))) << matrix;
+}
