@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 
 #include "compare/compare_run.hpp"
-#include "compare/fe_dynamic.hpp"
 #include "compare/hinge_levels.hpp"
 #include "compare/run_output.hpp"
 #include "compare/sweep.hpp"
@@ -23,17 +22,9 @@ void run_hinge_case(const Scene& scene, ResultsDir& out) {
 
 const SweepModelRegistration hinge{"hinge", run_hinge_case};
 
-// The FE at the scene's [fe] settings.
-void run_fe_case(const Scene& scene, ResultsDir& out) {
-  const fe::DynamicResult result = fe::run_dynamic(fe_chain_input(scene), fe_dynamic_solver_input(scene));
-  const RunResult run = fe_dynamic_run_result(scene, result);
-  write_fe_dynamic_outputs(scene, result, run, out);
-}
-
 // Both, with the agreement verdicts (compare/compare_run.hpp).
 void run_compare_case(const Scene& scene, ResultsDir& out) { (void)run_compare(scene, {}, out); }
 
-const SweepModelRegistration fe_model{"fe", run_fe_case};
 const SweepModelRegistration compare_model{"compare", run_compare_case};
 
 }  // namespace
