@@ -14,6 +14,8 @@
 
 #include "compare/cli/commands.hpp"
 #include "compare/compare_run.hpp"
+#include "compare/explain.hpp"
+#include "compare/result_cache.hpp"
 
 namespace ringcrush::compare::cli {
 namespace {
@@ -25,6 +27,7 @@ struct CompareOptions {
   std::string output;
   bool no_cache = false;
   bool quiet = false;
+  bool explain = false;
 };
 
 void print_outcome(const CompareOutcome& c) {
@@ -43,6 +46,16 @@ void print_outcome(const CompareOutcome& c) {
 
 void run(const CompareOptions& o) {
   const Scene scene = load_scene(o.scene);
+  if (o.explain) {
+    fmt::print("ringcrush compare {} would compute:\n", scene.name);
+    for (const auto& line : explain_hinge(scene))
+      if (line.find("FE model is not built") == std::string::npos) fmt::print("  hinge: {}\n", line);
+    for (const auto& line : explain_fe(scene))
+      if (line.find("hinge model is not built") == std::string::npos) fmt::print("  FE:    {}\n", line);
+    fmt::print("  FE result served from the cache ({}) when the same scene ran with this build\n",
+               o.no_cache ? "disabled by --no-cache" : ResultCache::default_root().string());
+    return;
+  }
   const fs::path target = o.output.empty() ? fs::path("results") / ("compare_" + scene.name) : fs::path(o.output);
   if (!o.quiet) fmt::print("scene {}: {}\n", scene.name, scene.title);
   CompareRunOptions options;
@@ -79,6 +92,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "Results directory (default results/compare_SCENE)");
   cmd->add_flag("--no-cache", o->no_cache, "Run the FE even if an identical run is cached (and do not store it)");
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing on success");
+  cmd->add_flag("--explain", o->explain, "Print what would be computed and why, and stop");
   cmd->callback([o] { run(*o); });
 }
 

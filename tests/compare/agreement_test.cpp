@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "compare/agreement.hpp"
+#include "compare/explain.hpp"
 #include "compare/measures.hpp"
 #include "compare/report_html.hpp"
 #include "compare/run_output.hpp"
@@ -180,4 +181,25 @@ TEST(Metrics, PeakMeanForceIgnoresAShortSpike) {
   // A window of 10 samples sees the spike's triangle (area 19 kN × dt) spread over 10 dt.
   EXPECT_NEAR(peak_mean_force(r, 10 * dt), 1000.0 + 19000.0 / 10.0, 1e-6);
   EXPECT_NEAR(peak_mean_force(r, 40 * dt), 1000.0 + 19000.0 / 40.0, 1e-6);
+}
+
+TEST(Explain, SaysWhatIsComputedAndWhy) {
+  const std::string dir = std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/";
+  auto joined = [](const std::vector<std::string>& lines) {
+    std::string s;
+    for (const auto& l : lines) s += l + "\n";
+    return s;
+  };
+  const std::string st = joined(explain_fe(load_scene(dir + "thesis_static.toml")));
+  EXPECT_NE(st.find("no mass matrix"), std::string::npos);
+  EXPECT_NE(st.find("half-ring"), std::string::npos);
+  Scene dyn = load_scene(dir + "test30_plates.toml");
+  std::string d = joined(explain_fe(dyn));
+  EXPECT_NE(d.find("explicit central difference"), std::string::npos);
+  EXPECT_NE(d.find("5 rigid plates"), std::string::npos);
+  EXPECT_NE(d.find("hinge model is not built"), std::string::npos);
+  dyn.outputs.fields = false;
+  d = joined(explain_fe(dyn));
+  EXPECT_NE(d.find("no field frames"), std::string::npos);
+  EXPECT_NE(joined(explain_hinge(dyn)).find("FE model is not built"), std::string::npos);
 }

@@ -1,0 +1,106 @@
+#include "compare/explain.hpp"
+
+#include <fmt/format.h>
+
+#include "compare/fe_dynamic.hpp"
+#include "compare/fe_static.hpp"
+
+namespace ringcrush::compare {
+namespace {
+
+std::string rule_name(Integration i) {
+  switch (i) {
+    case Integration::Full: return "3x3 Gauss";
+    case Integration::Reduced: return "2x2 Gauss";
+    case Integration::Selective: return "selective (3x3, volumetric at 2x2)";
+  }
+  return "?";
+}
+
+void outputs(const Scene& s, int frames, std::vector<std::string>& e) {
+  if (frames > 0)
+    e.push_back(fmt::format("field frames: {} snapshots of displacement, Mises, PEEQ and contact pressure, "
+                            "computed only at the snapshot times (outputs.fields = true, outputs.frames = {})",
+                            frames, s.outputs.frames));
+  else
+    e.push_back("no field frames: stresses, PEEQ fields and contact pressures are never gathered "
+                "(outputs.fields = false or outputs.frames = 0)");
+  e.push_back(s.outputs.history ? "history.csv: one row per output step (outputs.history = true)"
+                                : "no history.csv (outputs.history = false); summary.json is always written");
+  e.push_back(s.outputs.plots ? "SVG plots (outputs.plots = true)" : "no SVG plots (outputs.plots = false)");
+}
+
+}  // namespace
+
+std::vector<std::string> explain_fe(const Scene& s) {
+  std::vector<std::string> e;
+  const bool half = s.analysis.symmetry == Symmetry::Half;
+  if (s.analysis.type == AnalysisType::Static) {
+    const fe::FeInput in = fe_static_input(s);
+    e.push_back(fmt::format("static crush of one ring to {:.2f} mm between rigid plates (analysis.type = \"static\")",
+                            1e3 * in.solver.crush_m));
+    e.push_back(fmt::format("{} model: {} CPS8 around x {} through, {} (analysis.symmetry = \"{}\")",
+                            half ? "half-ring" : "full-ring", (half ? 1 : 2) * in.mesh.elements_around,
+                            in.mesh.elements_through, rule_name(s.fe.integration), half ? "half" : "full"));
+    e.push_back("no mass matrix and no inertia: a static run assembles none");
+    e.push_back("tangent stiffness and a sparse LDLT factorisation every Newton iteration; the pattern is analysed "
+                "once and only again when contact couples new nodes");
+    e.push_back("contact: both plates, and the inner wall against itself (lock-up)");
+    outputs(s, in.solver.frames, e);
+    return e;
+  }
+  const fe::ChainInput chain = fe_chain_input(s);
+  const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
+  e.push_back(fmt::format("dynamic impact of {} rings by a {:.3f} kg impactor at {:.1f} m/s, until {} or {:.1f} ms",
+                          chain.rings, chain.impactor_mass_kg, chain.impactor_velocity_m_s,
+                          solver.stop_at_rest ? "the impactor stops and the rings are at rest" : "the end time",
+                          1e3 * solver.end_time_s));
+  e.push_back(fmt::format("{} model: {} CPS8 per ring ({} around x {} through), {} (analysis.symmetry = \"{}\")",
+                          half ? "half-ring" : "full-ring",
+                          (half ? 1 : 2) * chain.mesh.elements_around * chain.mesh.elements_through,
+                          (half ? 1 : 2) * chain.mesh.elements_around, chain.mesh.elements_through,
+                          rule_name(s.fe.integration), half ? "half" : "full"));
+  if (solver.scheme == fe::DynamicScheme::Explicit)
+    e.push_back(fmt::format("explicit central difference: HRZ lumped mass, no tangent and no factorisation; the step "
+                            "is {:g} x the element/contact stability bound (fe.solver = \"explicit\")",
+                            solver.safety));
+  else
+    e.push_back(fmt::format("implicit HHT-alpha (alpha = {:g}): lumped mass, tangent and sparse LDLT per Newton "
+                            "iteration, half-step residual control with HAFTOL {:g} N (fe.solver = \"hht\")",
+                            solver.alpha, solver.haftol_n));
+  std::string joints;
+  switch (chain.joints) {
+    case fe::JointKind::Welded: joints = "welded: neighbours share their touching node (no contact needed there)"; break;
+    case fe::JointKind::Free: joints = "free: neighbours touch through contact only"; break;
+    case fe::JointKind::Plates:
+      joints = fmt::format("plates: {} rigid plates of {:.3f} kg between the rings", chain.rings - 1, chain.plate_mass_kg);
+      break;
+  }
+  e.push_back("joints " + joints + " (joints.type)");
+  e.push_back(fmt::format("contact: impactor face, {}ring against ring where the broad phase finds candidates, every "
+                          "ring's inner wall against itself",
+                          chain.fixed_target ? "target plane, " : "no target (far_end = \"free\"), "));
+  e.push_back(fmt::format("energy balance checked every step; a run stops when its error exceeds {:g} of the "
+                          "initial kinetic energy (fe.energy_error_limit)",
+                          solver.energy_error_limit));
+  outputs(s, solver.frames, e);
+  e.push_back("the hinge model is not built (ringcrush fe runs the FE only)");
+  return e;
+}
+
+std::vector<std::string> explain_hinge(const Scene& s) {
+  std::vector<std::string> e;
+  e.push_back(fmt::format("hinge model level {} on {} (hinge.level, hinge.integrator), rtol {:g}", s.hinge.level,
+                          s.hinge.integrator == HingeIntegrator::Ida ? "SUNDIALS IDA" : "Boost.Odeint",
+                          s.hinge.relative_tolerance));
+  if (s.hinge.level == "2")
+    e.push_back(fmt::format("Level 2: {} bars per ring; ring shapes kept at output steps for the measures",
+                            s.hinge.nodes_per_ring));
+  else if (s.hinge.level == "0" || s.hinge.level == "1" || s.hinge.level == "shock")
+    e.push_back("no ring shapes: this level has a few degrees of freedom per ring, so the wrap flag comes from "
+                "the crush alone (never set)");
+  e.push_back("the FE model is not built by the hinge run");
+  return e;
+}
+
+}  // namespace ringcrush::compare
