@@ -154,6 +154,22 @@ void thesis_part(const BenchOptions& o, ResultsDir& out) {
       fmt::print(" {:.3f}{}", c.run.crush_ratio[i], c.run.wrap_around[i] ? "w" : "");
     fmt::print("   (w: wraps around the next ring)\n");
   }
+  // Verification e (thesis §4.2.1): with the scene's driver, ring 1 wraps around ring 2 and
+  // the crush alternates; with plates, neither.
+  const auto& own = runs[base.fe.solver == FeSolver::Hht ? 1 : 0];
+  if (own.has_result && runs[2].has_result) {
+    const double a_own = alternation(own.run.crush_ratio).index;
+    const double a_plates = alternation(runs[2].run.crush_ratio).index;
+    const bool plates_wrap = std::find(runs[2].run.wrap_around.begin(), runs[2].run.wrap_around.end(), true) !=
+                             runs[2].run.wrap_around.end();
+    const bool holds = own.run.wrap_around[0] && a_own > alternation_threshold && !plates_wrap &&
+                       a_plates <= alternation_threshold;
+    fmt::print("verification e ({}): ring 1 wraps {} (W = {:.0f} deg, S = {:.1f} mm), alternation {:.3f}; "
+               "plates: a wrap {}, alternation {:.3f} (threshold {:g}) -> {}\n",
+               own.name, own.run.wrap_around[0] ? "yes" : "no", own.run.wrapped_angle_deg[0],
+               1e3 * own.run.inverted_arc_m[0], a_own, plates_wrap ? "yes" : "no", a_plates, alternation_threshold,
+               holds ? "holds" : "DOES NOT HOLD");
+  }
   if (!runs[0].has_result || !runs[1].has_result) return;
   // Verification f: HHT against explicit, ring by ring.
   std::ofstream agree(out.file("agreement.csv"));
