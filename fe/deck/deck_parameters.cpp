@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -218,6 +219,21 @@ DeckParameters deck_parameters(const DeckModel& m) {
   const auto [smallest, largest] = std::minmax_element(a.spans.begin(), a.spans.end());
   if (a.spans.empty() || !(*smallest > 0.0)) fail("cannot measure the element angles of ring 1");
   p.grading = *largest / *smallest;
+  {
+    // Corner nodes on the outer circle of ring 1, as angles from the bottom point.
+    std::vector<double> phi;
+    for (int e : first.elements)
+      for (std::size_t k = 0; k < 4; ++k) {
+        const Xy r = minus(xy(m.nodes.at(m.elements.at(e).nodes[k]).x), xy(first.centre));
+        if (length(r) < first.outer_radius * (1.0 - 1e-6)) continue;
+        double angle = std::atan2(r.y, r.x) + std::numbers::pi / 2;  // 0 at −y
+        if (angle < 0) angle += 2 * std::numbers::pi;
+        phi.push_back(angle);
+      }
+    std::sort(phi.begin(), phi.end());
+    for (double angle : phi)
+      if (p.boundary_angles.empty() || angle - p.boundary_angles.back() > 1e-9) p.boundary_angles.push_back(angle);
+  }
   p.pitch_m = 2.0 * p.outer_radius_m;
   if (p.rings.size() > 1) {
     p.pitch_m = p.rings[0].centre[1] - p.rings[1].centre[1];

@@ -39,6 +39,11 @@ struct DeckParameters {
   int elements_around = 0;  // per modelled part of one ring (half ring for a half model)
   int elements_through = 0;
   double grading = 1.0;     // largest / smallest element angle around the ring
+  // Ring 1's element boundaries around the ring, radians, measured counter-clockwise from the
+  // bottom point (φ = 0 at −y, π/2 at +x, π at the top): the deck's exact grading, for a mesh
+  // built from the parameters (the thesis static deck: blocks of 5.625° and 11.25°, which the
+  // smooth grading law of fe/mesh only approximates).
+  std::vector<double> boundary_angles;
   bool welded = false;      // *MPC ties between coincident nodes of neighbouring rings
   int ring_ties = 0, internal_ties = 0;  // MPCs between rings / within one ring
   // Material.

@@ -3,6 +3,8 @@
 // radii, element counts, material, impactor mass and velocity, solver controls.
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "compare/deck_scene.hpp"
 #include "compare/scene.hpp"
 #include "fe/deck/deck_parameters.hpp"
@@ -53,6 +55,16 @@ TEST(DeckParameters, StaticDeckReadsOffTheRing) {
   EXPECT_TRUE(p.fixed_target);
   EXPECT_EQ(*p.contact_smoothing, 0.25);
   EXPECT_EQ(p.initial_increment, 0.001);
+  // The deck's block grading per quarter: 3 × 5.625°, 5 × 11.25°, 3 × 5.625°, twice.
+  ASSERT_EQ(p.boundary_angles.size(), 23u);
+  const double deg = std::numbers::pi / 180;
+  const double steps[11] = {5.625, 5.625, 5.625, 11.25, 11.25, 11.25, 11.25, 11.25, 5.625, 5.625, 5.625};
+  double phi = 0;
+  for (int k = 0; k < 22; ++k) {
+    EXPECT_NEAR(p.boundary_angles[static_cast<std::size_t>(k)], phi * deg, 1e-12) << k;
+    phi += steps[k % 11];
+  }
+  EXPECT_NEAR(p.boundary_angles.back(), std::numbers::pi, 1e-12);
 }
 
 TEST(DeckParameters, DynamicDeckReadsOffTheChain) {
