@@ -26,8 +26,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include "compare/cli/commands.hpp"
+#include "compare/deck_scene.hpp"
+#include "compare/explain.hpp"
 #include "compare/cli/fe_dynamic_terminal.hpp"
 #include "compare/fe_dynamic.hpp"
 #include "compare/fe_static.hpp"
@@ -40,6 +43,7 @@ struct FeOptions {
   std::string scene;
   std::string output;
   bool quiet = false;
+  bool explain = false;
   std::string solver;       // "explicit" | "hht": overrides fe.solver of a dynamic scene
   int elements_around = 0;  // > 0: overrides fe.elements_around
 };
@@ -86,7 +90,9 @@ void echo(const Scene& s, const fe::FeInput& in) {
 
 // The scene with the command-line overrides applied.
 Scene scene_with_overrides(const FeOptions& o) {
-  Scene s = load_scene(o.scene);
+  // An ABAQUS deck (.inp, issue 5 item 2) runs as its equivalent scene (compare/deck_scene.hpp).
+  const std::filesystem::path file(o.scene);
+  Scene s = file.extension() == ".inp" || file.extension() == ".INP" ? scene_from_deck(file) : load_scene(file);
   if (o.elements_around > 0) {
     if (o.elements_around % 2 != 0)
       throw std::invalid_argument(fmt::format("ringcrush fe: --elements-around {} must be even", o.elements_around));
@@ -118,6 +124,11 @@ void run_fe_dynamic(const Scene& s, const FeOptions& o) {
 
 void run_fe(const FeOptions& o) {
   const Scene s = scene_with_overrides(o);
+  if (o.explain) {
+    fmt::print("ringcrush fe {} would compute:\n", s.name);
+    for (const auto& line : explain_fe(s)) fmt::print("  {}\n", line);
+    return;
+  }
   if (o.output.empty()) throw std::invalid_argument("ringcrush fe: -o DIR is required");
   if (s.analysis.type == AnalysisType::Dynamic) return run_fe_dynamic(s, o);
   const fe::FeInput in = fe_static_input(s);
@@ -145,9 +156,12 @@ void add_fe_command(CLI::App& app) {
   auto o = std::make_shared<FeOptions>();
   auto* cmd = app.add_subcommand(
       "fe", "CPS8 finite-element model of a scene (static crush, thesis §3.4, §3.6; impact of a chain, §3.5, §4.2)");
-  cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)")->required();
+  cmd->add_option("scene", o->scene, "Scene file (.toml), or an ABAQUS deck (.inp) of the thesis")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all; required)");
   cmd->add_flag("-q,--quiet", o->quiet, "No progress or echo on the terminal");
+  cmd->add_flag("--explain", o->explain, "Print what the run would compute and why, and stop");
   cmd->add_option("--solver", o->solver, "Dynamic scenes: override fe.solver")
       ->check(CLI::IsMember({"explicit", "hht"}));
   cmd->add_option("--elements-around", o->elements_around, "Override fe.elements_around (per half ring, even)")
