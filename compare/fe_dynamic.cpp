@@ -52,13 +52,6 @@ void require_dynamic_fe_scene(const Scene& s) {
 
 // The same four classes as the Level 2 hinge runs (compare/hinge_run_2d.cpp), so that the two
 // models' `mode` arrays compare word for word.
-std::string mode_of(double crush_ratio, bool wrap) {
-  if (wrap) return "wrapped";
-  if (crush_ratio >= 0.5) return "flattened";
-  if (crush_ratio >= 0.1) return "crushed";
-  return "intact";
-}
-
 void check_finite(double v, const std::string& what) {
   if (!std::isfinite(v))
     throw std::runtime_error(fmt::format("fe dynamic result: non-finite {} (a failed run is not written)", what));
@@ -203,7 +196,7 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
     out.wrap_around.push_back(w.wrap_around);
     out.wrapped_angle_deg.push_back(w.wrapped_angle_deg);
     out.inverted_arc_m.push_back(w.inverted_arc_m);
-    out.mode.push_back(mode_of(c, w.wrap_around));
+    out.mode.push_back(deformation_mode(c, w.wrap_around));
   }
   // Final outlines for reports (outer surface, x ≥ 0 half of a half model).
   for (const auto& shape : shapes) {

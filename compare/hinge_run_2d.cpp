@@ -21,13 +21,6 @@ hinge::PolygonJoint joint_of(JointType j) {
   return hinge::PolygonJoint::Free;
 }
 
-std::string mode_of(double crush_ratio, bool wrap) {
-  if (wrap) return "wrapped";
-  if (crush_ratio >= 0.5) return "flattened";
-  if (crush_ratio >= 0.1) return "crushed";
-  return "intact";
-}
-
 }  // namespace
 
 hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& s) {
@@ -206,7 +199,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     r.wrap_around.push_back(w.wrap_around);
     r.wrapped_angle_deg.push_back(w.wrapped_angle_deg);
     r.inverted_arc_m.push_back(w.inverted_arc_m);
-    r.mode.push_back(mode_of(c, w.wrap_around));
+    r.mode.push_back(deformation_mode(c, w.wrap_around));
   }
 
   // Final outlines (mean line, closed) for reports; same chain frame as the FE (ring 1

@@ -163,4 +163,11 @@ Alternation alternation(const std::vector<double>& c, double tol) {
   return a;
 }
 
+std::string deformation_mode(double crush_ratio, bool wrap_around) {
+  if (wrap_around) return "wrapped";
+  if (crush_ratio >= 0.5) return "flattened";
+  if (crush_ratio >= 0.1) return "crushed";
+  return "intact";
+}
+
 }  // namespace ringcrush::compare

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 namespace ringcrush::compare {
@@ -63,6 +64,10 @@ struct WrapMeasure {
 // flag from wrap_flag().
 WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
                          double wall_thickness, const WrapThresholds& thresholds = {});
+
+// Deformation mode of a ring from its final crush ratio and wrap flag: "wrapped" when the
+// flag is set, else "flattened" (c ≥ 0.5), "crushed" (c ≥ 0.1) or "intact".
+std::string deformation_mode(double crush_ratio, bool wrap_around);
 
 struct Alternation {
   double lag1 = 0.0;               // A1: −Σ r_i r_{i+1} / Σ r_i² of the detrended crushes

@@ -166,3 +166,11 @@ TEST(Alternation, SmallRipplesBelowToleranceDoNotCount) {
   EXPECT_DOUBLE_EQ(a.sign_change_fraction, 0.0);
   EXPECT_DOUBLE_EQ(a.index, 0.0);
 }
+
+TEST(DeformationMode, FromCrushAndWrap) {
+  EXPECT_EQ(deformation_mode(0.9, true), "wrapped");
+  EXPECT_EQ(deformation_mode(0.5, false), "flattened");
+  EXPECT_EQ(deformation_mode(0.49, false), "crushed");
+  EXPECT_EQ(deformation_mode(0.1, false), "crushed");
+  EXPECT_EQ(deformation_mode(0.09, false), "intact");
+}
