@@ -11,18 +11,6 @@
 namespace ringcrush::compare {
 namespace {
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
 std::vector<double> milliseconds(const std::vector<double>& t) {
   std::vector<double> ms;
   for (double v : t) ms.push_back(1e3 * v);
@@ -57,12 +45,12 @@ std::string render_report_html(const ReportInput& in) {
 
   std::string h;
   h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
-  h += fmt::format("<title>ringcrush compare — {}</title>\n", escape(s.name));
+  h += fmt::format("<title>ringcrush compare — {}</title>\n", xml_escape(s.name));
   h += "<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;color:#222}"
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
        "th{background:#f4f4f4}td.l,th.l{text-align:left}.pass{color:#17752b;font-weight:bold}"
        ".fail{color:#b3141b;font-weight:bold}figure{margin:1em 0}</style></head><body>\n";
-  h += fmt::format("<h1>FE against hinge model: {}</h1>\n<p>{}</p>\n", escape(s.name), escape(s.title));
+  h += fmt::format("<h1>FE against hinge model: {}</h1>\n<p>{}</p>\n", xml_escape(s.name), xml_escape(s.title));
   h += fmt::format(
       "<p>{} rings, D = {:.1f} mm, t = {:.2f} mm, L = {:.1f} mm, joints {}; impactor {:.3f} kg at {:.1f} m/s; far end "
       "{}.</p>\n",
@@ -70,16 +58,16 @@ std::string render_report_html(const ReportInput& in) {
       joints_name(s.joints.type), s.impactor ? s.impactor->mass_kg : 0.0, s.impactor ? s.impactor->velocity_m_s : 0.0,
       s.far_end == FarEnd::Fixed ? "fixed target" : "free");
   h += fmt::format("<p>Run time: FE {:.3g} s{}, hinge (level {}) {:.3g} s. Code {}.</p>\n", in.fe_wall_time_s,
-                   in.fe_from_cache ? " (served from the result cache; original run time)" : "", escape(s.hinge.level),
-                   in.hinge_wall_time_s, escape(in.code_version));
+                   in.fe_from_cache ? " (served from the result cache; original run time)" : "", xml_escape(s.hinge.level),
+                   in.hinge_wall_time_s, xml_escape(in.code_version));
   h += fmt::format("<h2>Verdict: <span class=\"{}\">{}</span></h2>\n", a.agree ? "pass" : "fail",
                    a.agree ? "the models agree" : "the models disagree");
   h += "<table><tr><th class=\"l\">check</th><th>value</th><th>threshold</th><th>result</th><th class=\"l\">detail</th></tr>\n";
   for (const auto& v : a.verdicts)
     h += fmt::format("<tr><td class=\"l\">{}</td><td>{:.3g}</td><td>{:.3g}</td><td class=\"{}\">{}</td><td "
                      "class=\"l\">{}</td></tr>\n",
-                     escape(v.description), v.value, v.threshold, v.pass ? "pass" : "fail", v.pass ? "pass" : "FAIL",
-                     escape(v.detail));
+                     xml_escape(v.description), v.value, v.threshold, v.pass ? "pass" : "fail", v.pass ? "pass" : "FAIL",
+                     xml_escape(v.detail));
   h += "</table>\n";
   h += "<h2>Per ring</h2>\n<table><tr><th>ring</th><th>FE crush ratio</th><th>hinge crush ratio</th>"
        "<th>difference</th><th>FE wrap</th><th>hinge wrap</th><th class=\"l\">FE mode</th><th class=\"l\">hinge "
@@ -88,7 +76,7 @@ std::string render_report_html(const ReportInput& in) {
     h += fmt::format("<tr><td>{}</td><td>{:.3f}</td><td>{:.3f}</td><td>{:+.3f}</td><td>{}</td><td>{}</td><td "
                      "class=\"l\">{}</td><td class=\"l\">{}</td></tr>\n",
                      r.ring, r.fe_crush_ratio, r.hinge_crush_ratio, r.difference, r.fe_wrap ? "yes" : "no",
-                     r.hinge_wrap ? "yes" : "no", escape(r.fe_mode), escape(r.hinge_mode));
+                     r.hinge_wrap ? "yes" : "no", xml_escape(r.fe_mode), xml_escape(r.hinge_mode));
   h += "</table>\n";
   h += fmt::format("<p>Alternation index: FE {:.2f}, hinge {:.2f} (a chain alternates above {:.2f}). Arrest time: FE "
                    "{}, hinge {}.</p>\n",

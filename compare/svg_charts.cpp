@@ -14,24 +14,12 @@ namespace {
 
 const char* const colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd"};
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
 std::string header(int width, int height, const std::string& title) {
   return fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
       "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       "<text x=\"{2}\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">{3}</text>\n",
-      width, height, width / 2, escape(title));
+      width, height, width / 2, xml_escape(title));
 }
 
 }  // namespace
@@ -72,19 +60,19 @@ std::string render_bar_chart(const std::string& title, const std::string& y_labe
       svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\">"
                          "<title>{} {}: {:.4g}</title></rect>\n",
                          x0 + bar * static_cast<double>(g), y, bar, h, colours[g % std::size(colours)],
-                         escape(groups[g].label), escape(categories[c]), v);
+                         xml_escape(groups[g].label), xml_escape(categories[c]), v);
     }
     svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", x0 + 0.4 * slot,
-                       top + ph + 16, escape(categories[c]));
+                       top + ph + 16, xml_escape(categories[c]));
   }
   svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", left,
                      top, pw, ph);
   svg += fmt::format("<text transform=\"translate(18,{}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
-                     top + ph / 2, escape(y_label));
+                     top + ph / 2, xml_escape(y_label));
   for (std::size_t g = 0; g < groups.size(); ++g)
     svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"14\" height=\"14\" fill=\"{}\"/><text x=\"{}\" y=\"{}\">{}</text>\n",
                        left + pw + 12, top + 6 + 20.0 * static_cast<double>(g), colours[g % std::size(colours)],
-                       left + pw + 32, top + 18 + 20.0 * static_cast<double>(g), escape(groups[g].label));
+                       left + pw + 32, top + 18 + 20.0 * static_cast<double>(g), xml_escape(groups[g].label));
   return svg + "</svg>\n";
 }
 
@@ -125,7 +113,7 @@ std::string render_outlines(const std::string& title, const std::vector<OutlineS
     const double ly = top + ph + margin / 2 + 24.0 * static_cast<double>(k);
     svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" stroke-width=\"2\"{4}/>"
                        "<text x=\"{5}\" y=\"{6}\">{7}</text>\n",
-                       margin, ly, margin + 30, colour, dash, margin + 38, ly + 4, escape(s.label));
+                       margin, ly, margin + 30, colour, dash, margin + 38, ly + 4, xml_escape(s.label));
   }
   // Scale bar: 10 mm.
   const double bar = 0.010 * scale;

@@ -13,7 +13,9 @@ namespace {
 const char* const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
-std::string escape(const std::string& s) {
+}  // namespace
+
+std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
@@ -26,7 +28,6 @@ std::string escape(const std::string& s) {
   }
   return out;
 }
-}  // namespace
 
 std::vector<double> nice_ticks(double lo, double hi, int target_count) {
   if (!(hi > lo)) return {lo};
@@ -81,7 +82,7 @@ std::string SvgPlot::render(int width, int height) const {
       "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
       width, height);
   svg += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">{}</text>\n",
-                     left + pw / 2, escape(title_));
+                     left + pw / 2, xml_escape(title_));
   for (double v : xt) {
     const double x = left + (v - x0) / (x1 - x0) * pw;
     svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
@@ -97,9 +98,9 @@ std::string SvgPlot::render(int width, int height) const {
   svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
                      left, top, pw, ph);
   svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
-                     height - 18, escape(x_label_));
+                     height - 18, xml_escape(x_label_));
   svg += fmt::format("<text transform=\"translate(20,{}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
-                     top + ph / 2, escape(y_label_));
+                     top + ph / 2, xml_escape(y_label_));
 
   for (std::size_t k = 0; k < series_.size(); ++k) {
     const auto& s = series_[k];
@@ -120,7 +121,7 @@ std::string SvgPlot::render(int width, int height) const {
     svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" stroke-width=\"2\"{4}/>"
                        "<text x=\"{5}\" y=\"{6}\">{7}</text>\n",
                        left + pw + 10, ly, left + pw + 34, colour,
-                       s.dashed ? " stroke-dasharray=\"6,4\"" : "", left + pw + 40, ly + 4, escape(s.label));
+                       s.dashed ? " stroke-dasharray=\"6,4\"" : "", left + pw + 40, ly + 4, xml_escape(s.label));
   }
   svg += "</svg>\n";
   return svg;

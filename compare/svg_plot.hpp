@@ -28,6 +28,9 @@ class SvgPlot {
   bool log_x_ = false, log_y_ = false;
 };
 
+// Text for XML/HTML content and attribute values (< > & ").
+std::string xml_escape(const std::string& s);
+
 // "Nice" tick positions covering [lo, hi] (1, 2, 5 × 10^k steps).
 std::vector<double> nice_ticks(double lo, double hi, int target_count = 6);
 

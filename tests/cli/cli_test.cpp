@@ -1,6 +1,8 @@
 // End-to-end tests of the `ringcrush` command line: help, usage errors, the formula run and
 // its results directory, and bad scenes that must exit non-zero and write nothing.
 #include <gtest/gtest.h>
+
+#include "command_run.hpp"
 #include <sys/wait.h>
 
 #include <array>
@@ -13,21 +15,8 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct CommandRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CommandRun ringcrush(const std::string& args) {
-  const std::string cmd = std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("popen failed");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using cli_testing::CommandRun;
+using cli_testing::ringcrush;
 
 const std::string scenes = std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/";
 

@@ -2,6 +2,8 @@
 // the results directory, the exit status against the verdict, and the FE result cache (a
 // rerun is served from the cache; a changed scene is not).
 #include <gtest/gtest.h>
+
+#include "command_run.hpp"
 #include <sys/wait.h>
 
 #include <array>
@@ -17,21 +19,10 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct CommandRun {
-  int status;
-  std::string output;
-};
+using cli_testing::CommandRun;
 
 CommandRun ringcrush(const std::string& args, const fs::path& cache) {
-  const std::string cmd =
-      "RINGCRUSH_CACHE_DIR='" + cache.string() + "' " + std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("popen failed");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+  return cli_testing::ringcrush(args, "RINGCRUSH_CACHE_DIR='" + cache.string() + "'");
 }
 
 fs::path scratch(const std::string& name) {

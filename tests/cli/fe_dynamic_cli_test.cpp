@@ -4,6 +4,8 @@
 // does not cover exit 2; a run stopped by its energy limit exits 1 with the diagnosis and
 // leaves no results directory; `bench-fe-dynamic --quick` writes its tables.
 #include <gtest/gtest.h>
+
+#include "command_run.hpp"
 #include <sys/wait.h>
 
 #include <array>
@@ -18,21 +20,8 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct CommandRun {
-  int status;
-  std::string output;
-};
-
-CommandRun ringcrush(const std::string& args) {
-  const std::string cmd = std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("popen failed");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using cli_testing::CommandRun;
+using cli_testing::ringcrush;
 
 fs::path scratch(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("ringcrush_fe_dynamic_cli_test_" + name);

@@ -1,6 +1,8 @@
 // `ringcrush check-deck` end to end: the corrected thesis decks read and summarise; the
 // original dynamic deck is refused with "FILE:212: ..." and exit status 2.
 #include <gtest/gtest.h>
+
+#include "command_run.hpp"
 #include <sys/wait.h>
 
 #include <array>
@@ -8,21 +10,8 @@
 #include <string>
 
 namespace {
-struct CommandRun {
-  int status;
-  std::string output;
-};
-
-CommandRun ringcrush(const std::string& args) {
-  const std::string cmd = std::string(RINGCRUSH_EXE) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("popen failed");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) out += buf.data();
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using cli_testing::CommandRun;
+using cli_testing::ringcrush;
 
 const std::string thesis = std::string(RINGCRUSH_SOURCE_DIR) + "/data/thesis/";
 }  // namespace
