@@ -77,8 +77,12 @@ Cps8Geometry cps8_geometry(const ElementCoords& x, Integration rule, double thic
 void cps8_evaluate(const Cps8Geometry& geo, const double* u, const PointState* committed,
                    PointState* trial, const J2PlaneStress& material, bool want_tangent,
                    Cps8Output& out) {
+  if (!want_tangent) {  // explicit dynamics and residual-only evaluations
+    cps8_force(geo, u, committed, trial, material, out);
+    return;
+  }
   out.force.setZero();
-  if (want_tangent) out.tangent.setZero();
+  out.tangent.setZero();
   out.elastic_energy = 0;
   out.plastic_work = 0;
   const bool selective = geo.rule == Integration::Selective;

@@ -71,6 +71,15 @@ double mises(const Vec3& s) {
 //   C_alg = Ξ − N Nᵀ / (SᵀPΞPS + β),  N = ΞPS,  β = ⅔ H ξ / (1 − ⅔ H Δγ),
 // with H = dσy/dᾱ on the active hardening segment.
 J2Update J2PlaneStress::update(const Vec3& strain_increment, const PointState& committed) const {
+  return return_map(strain_increment, committed, true);
+}
+
+J2Update J2PlaneStress::update_stress(const Vec3& strain_increment, const PointState& committed) const {
+  return return_map(strain_increment, committed, false);
+}
+
+J2Update J2PlaneStress::return_map(const Vec3& strain_increment, const PointState& committed,
+                                   bool want_tangent) const {
   J2Update out;
   out.peeq = committed.peeq;
   const Vec3 trial = committed.stress + c_ * strain_increment;
@@ -79,7 +88,7 @@ J2Update J2PlaneStress::update(const Vec3& strain_increment, const PointState& c
   const double f_trial = 0.5 * xi_trial - sy_n * sy_n / 3.0;
   if (f_trial <= 1e-12 * sy_n * sy_n) {
     out.stress = trial;
-    out.tangent = c_;
+    if (want_tangent) out.tangent = c_;
     out.elastic_energy = 0.5 * trial.dot(c_inv_ * trial);
     out.strain33_increment = -nu_ / e_ * (trial(0) + trial(1) - committed.stress(0) - committed.stress(1));
     return out;
@@ -131,7 +140,7 @@ J2Update J2PlaneStress::update(const Vec3& strain_increment, const PointState& c
   const Vec3 n = xi_mat * ps;
   const double beta = 2.0 / 3.0 * h * xi / (1.0 - 2.0 / 3.0 * h * dg);
   out.stress = s;
-  out.tangent = xi_mat - n * n.transpose() / (ps.dot(n) + beta);
+  if (want_tangent) out.tangent = xi_mat - n * n.transpose() / (ps.dot(n) + beta);
   out.plastic = true;
   out.plastic_increment = dg * ps;
   out.peeq = alpha;
