@@ -58,7 +58,7 @@ class J2PlaneStress {
   // Backward-Euler return mapping from the committed stress and PEEQ for the strain
   // increment ΔE (Simo & Taylor's plane-stress projected algorithm; equations in the .cpp).
   J2Update update(const Vec3& strain_increment, const PointState& committed) const;
-  // The same update without the consistent tangent (`tangent` left unset): the explicit
+  // The same update without the consistent tangent (`tangent` set to zero): the explicit
   // driver's force-only path, where the tangent is never used.
   J2Update update_stress(const Vec3& strain_increment, const PointState& committed) const;
 
