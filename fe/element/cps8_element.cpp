@@ -77,8 +77,14 @@ Cps8Geometry cps8_geometry(const ElementCoords& x, Integration rule, double thic
 void cps8_evaluate(const Cps8Geometry& geo, const double* u, const PointState* committed,
                    PointState* trial, const J2PlaneStress& material, bool want_tangent,
                    Cps8Output& out) {
+  // Force only (explicit dynamics, residual-only evaluations): the B-free path of
+  // cps8_force.cpp. Below is the reference path that forms B, used with the tangent.
+  if (!want_tangent) {
+    cps8_force(geo, u, committed, trial, material, out);
+    return;
+  }
   out.force.setZero();
-  if (want_tangent) out.tangent.setZero();
+  out.tangent.setZero();
   out.elastic_energy = 0;
   out.plastic_work = 0;
   const bool selective = geo.rule == Integration::Selective;
@@ -131,7 +137,6 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* u, const PointState* c
     t.plastic_work = committed[i].plastic_work + w * up.dissipation;
     t.thickness_stretch = committed[i].thickness_stretch * l3;
     out.plastic_work += t.plastic_work;
-    if (!want_tangent) continue;
     // Small fixed-size products: lazy (coefficient-wise) evaluation, no GEMM kernel.
     const Eigen::Matrix<double, 3, 16> cb = (w * up.tangent).lazyProduct(b);
     out.tangent.noalias() += b.transpose().lazyProduct(cb);
@@ -146,7 +151,7 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* u, const PointState* c
     }
     add_geometric(d, s, w, out.tangent);
   }
-  if (selective && want_tangent)
+  if (selective)
     for (int r = 0; r < 4; ++r) add_geometric(geo.dndx_reduced[r], Mat2::Identity(), q_r[r], out.tangent);
 }
 

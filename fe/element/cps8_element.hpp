@@ -57,6 +57,12 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* du, const PointState* 
                    PointState* trial, const J2PlaneStress& material, bool want_tangent,
                    Cps8Output& out);
 
+// Force-only path of cps8_evaluate (want_tangent = false dispatches here; cps8_force.cpp):
+// the same force, energies and trial states to round-off, without B or the tangent.
+// out.tangent is left untouched.
+void cps8_force(const Cps8Geometry& geo, const double* du, const PointState* committed, PointState* trial,
+                const J2PlaneStress& material, Cps8Output& out);
+
 // Point-averaged von Mises (Cauchy) stress and PEEQ of committed states (field output).
 struct Cps8Fields {
   double mises = 0, peeq = 0;

@@ -58,6 +58,9 @@ class J2PlaneStress {
   // Backward-Euler return mapping from the committed stress and PEEQ for the strain
   // increment ΔE (Simo & Taylor's plane-stress projected algorithm; equations in the .cpp).
   J2Update update(const Vec3& strain_increment, const PointState& committed) const;
+  // The same update without the consistent tangent (`tangent` set to zero): the explicit
+  // driver's force-only path, where the tangent is never used.
+  J2Update update_stress(const Vec3& strain_increment, const PointState& committed) const;
 
   const Mat3& elastic_tangent() const { return c_; }
   double youngs_modulus() const { return e_; }
@@ -65,6 +68,8 @@ class J2PlaneStress {
   const HardeningTable& hardening() const { return table_; }
 
  private:
+  J2Update return_map(const Vec3& strain_increment, const PointState& committed, bool want_tangent) const;
+
   double e_, nu_, g_;
   Mat3 c_, c_inv_, p_;
   HardeningTable table_;
