@@ -105,3 +105,25 @@ TEST(CompareCli, StaticScenesAreRefusedAndWriteNothing) {
   EXPECT_NE(r.output.find("dynamic"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
+
+// Issue 8 verification f: a scene that asks for no fields writes no frames, and its summary
+// numbers equal those of the same scene asking for frames (frames are output, not physics).
+TEST(FeOutputs, NoFieldsWritesNoFramesAndTheSameSummary) {
+  const fs::path dir = scratch("fields");
+  const fs::path without = small_scene(dir / "without", 27.7);  // outputs.fields = false
+  std::string text = read(without);
+  text = std::regex_replace(text, std::regex("(^|\n)fields = false"), "$1fields = true");
+  fs::create_directories(dir / "with");
+  const fs::path with = dir / "with" / "small_chain.toml";
+  std::ofstream(with) << text;
+  ASSERT_EQ(ringcrush("fe " + without.string() + " -q -o " + (dir / "a").string(), dir / "cache").status, 0);
+  ASSERT_EQ(ringcrush("fe " + with.string() + " -q -o " + (dir / "b").string(), dir / "cache").status, 0);
+  EXPECT_FALSE(fs::exists(dir / "a" / "frames"));
+  EXPECT_FALSE(fs::exists(dir / "a" / "series.pvd"));
+  EXPECT_TRUE(fs::exists(dir / "b" / "series.pvd"));
+  const auto a = nlohmann::json::parse(read(dir / "a" / "summary.json"));
+  const auto b = nlohmann::json::parse(read(dir / "b" / "summary.json"));
+  for (const char* key : {"crush_ratio", "wrap_around", "wrapped_angle_deg", "alternation_index", "peak_force_N",
+                          "impactor_final_velocity_m_s", "energy_balance_error", "steps"})
+    EXPECT_EQ(a[key], b[key]) << key;
+}
