@@ -188,7 +188,11 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
   const double d_outer = s.rings.outer_diameter_m, t = s.rings.wall_thickness_m;
   const double mean_radius = 0.5 * (d_outer - t);
   const auto shapes = outer_surface_shapes(r.mesh, r.final_displacement);
+  std::vector<double> top_height, bottom_height;
   for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const HalfHeights hh = half_heights(shapes[i], d_outer);
+    top_height.push_back(hh.top);
+    bottom_height.push_back(hh.bottom);
     const double c = crush_ratio(shapes[i], d_outer);
     const RingShape* lower = i + 1 < shapes.size() ? &shapes[i + 1] : nullptr;
     const WrapMeasure w = measure_wrap(shapes[i], lower, mean_radius, t);
@@ -224,6 +228,8 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
   out.extra["end_reason"] = r.end_reason;
   out.extra["solver"] = hht ? "hht" : "explicit";
   out.extra["max_peeq_per_ring"] = r.max_peeq_per_ring;
+  out.extra["top_height_ratio"] = top_height;
+  out.extra["bottom_height_ratio"] = bottom_height;
   out.extra["step_limited_by"] = st.step_limited_by;
   out.extra["min_step_s"] = st.min_step_s;
   out.extra["max_step_s"] = st.max_step_s;
@@ -244,13 +250,18 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
 
 CsvTable rings_table(const Scene& s, const RunResult& run) {
   CsvTable t;
-  t.columns = {"ring", "crush_ratio", "crush_m", "wrapped_angle_deg", "inverted_arc_m", "wrap_around", "max_peeq"};
-  std::vector<double> peeq;
-  if (run.extra.contains("max_peeq_per_ring")) peeq = run.extra["max_peeq_per_ring"].get<std::vector<double>>();
+  t.columns = {"ring",           "crush_ratio",      "crush_m",         "wrapped_angle_deg", "inverted_arc_m",
+               "wrap_around",    "top_height_ratio", "bottom_height_ratio", "max_peeq"};
+  auto per_ring = [&](const char* key) {
+    return run.extra.contains(key) ? run.extra[key].get<std::vector<double>>() : std::vector<double>{};
+  };
+  const std::vector<double> peeq = per_ring("max_peeq_per_ring"), top = per_ring("top_height_ratio"),
+                            bottom = per_ring("bottom_height_ratio");
+  auto at = [](const std::vector<double>& v, std::size_t i) { return i < v.size() ? v[i] : 0.0; };
   for (std::size_t i = 0; i < run.crush_ratio.size(); ++i)
     t.add_row({static_cast<double>(i + 1), run.crush_ratio[i], run.crush_ratio[i] * s.rings.outer_diameter_m,
-               run.wrapped_angle_deg[i], run.inverted_arc_m[i], run.wrap_around[i] ? 1.0 : 0.0,
-               i < peeq.size() ? peeq[i] : 0.0});
+               run.wrapped_angle_deg[i], run.inverted_arc_m[i], run.wrap_around[i] ? 1.0 : 0.0, at(top, i),
+               at(bottom, i), at(peeq, i)});
   return t;
 }
 

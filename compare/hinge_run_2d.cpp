@@ -185,7 +185,11 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   const auto arrest_shapes = ring_shapes(h.shapes[arrest_sample], t);
   WrapThresholds thresholds;
   thresholds.min_inverted_arc_fraction = s.wrap_min_inverted_arc_fraction;
+  std::vector<double> top_height, bottom_height;
   for (std::size_t ring = 0; ring < final_shapes.size(); ++ring) {
+    const HalfHeights hh = half_heights(final_shapes[ring], D);
+    top_height.push_back(hh.top);
+    bottom_height.push_back(hh.bottom);
     const bool below = ring + 1 < final_shapes.size() && scene.joints.type != JointType::Plates;
     WrapMeasure w;
     w.inverted_arc_m = inverted_arc_length(final_shapes[ring]);
@@ -253,6 +257,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
       {"residual_evaluations", raw.rhs_evaluations},
       {"jacobian_setups", raw.jacobian_setups},
       {"inverted_arc_m", r.inverted_arc_m},
+      {"top_height_ratio", top_height},
+      {"bottom_height_ratio", bottom_height},
       {"hinge_map", maps},
       {"level2_settings",
        {{"flow_D_per_s", s.flow_d_per_s},

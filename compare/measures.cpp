@@ -163,6 +163,37 @@ Alternation alternation(const std::vector<double>& c, double tol) {
   return a;
 }
 
+namespace {
+// y of the ring at material angle `theta`, linear between the two points that bracket it
+// (material angles are taken modulo 2π; a point exactly at θ is used as is).
+double y_at_material_angle(const RingShape& ring, double theta) {
+  const std::size_t n = ring.points.size();
+  double below = -std::numeric_limits<double>::infinity(), above = std::numeric_limits<double>::infinity();
+  std::size_t i_below = n, i_above = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = std::remainder(ring.material_angle[i] - theta, 2 * pi);
+    if (d <= 0 && d > below) { below = d; i_below = i; }
+    if (d >= 0 && d < above) { above = d; i_above = i; }
+  }
+  if (i_below == n || i_above == n)
+    throw std::invalid_argument("half_heights: the shape has no points on both sides of the side point C");
+  if (above - below <= 0) return ring.points[i_below].y();
+  const double s = -below / (above - below);
+  return (1 - s) * ring.points[i_below].y() + s * ring.points[i_above].y();
+}
+}  // namespace
+
+HalfHeights half_heights(const RingShape& ring, double outer_diameter) {
+  require_shape(ring);
+  if (!(outer_diameter > 0)) throw std::invalid_argument("half_heights: outer diameter must be > 0");
+  const double y_side = ring.half ? y_at_material_angle(ring, 0.5 * pi)
+                                  : 0.5 * (y_at_material_angle(ring, 0.5 * pi) + y_at_material_angle(ring, 1.5 * pi));
+  auto [lo, hi] = std::minmax_element(ring.points.begin(), ring.points.end(),
+                                      [](const auto& a, const auto& b) { return a.y() < b.y(); });
+  const double r_outer = 0.5 * outer_diameter, offset = 0.5 * ring.surface_offset;
+  return {(hi->y() - y_side + offset) / r_outer, (y_side - lo->y() + offset) / r_outer};
+}
+
 std::string deformation_mode(double crush_ratio, bool wrap_around) {
   if (wrap_around) return "wrapped";
   if (crush_ratio >= 0.5) return "flattened";

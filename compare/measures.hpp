@@ -65,6 +65,18 @@ struct WrapMeasure {
 WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
                          double wall_thickness, const WrapThresholds& thresholds = {});
 
+// Heights of the ring's top and bottom halves (thesis §4.2.1: ring 2 "keeps its top nearly
+// intact while its bottom flattens"): the outer surface's extent above and below the side
+// point C (material angle π/2, and 3π/2 on a full ring, averaged), each divided by the
+// undeformed outer radius, so an intact ring gives 1 and 1 and a half flattened against
+// its neighbour gives a value near t/(D/2). Unlike the crush (the sum of the two losses) it
+// tells which half gave way.
+struct HalfHeights {
+  double top = 0.0;     // (y_max − y_C) / (D/2)
+  double bottom = 0.0;  // (y_C − y_min) / (D/2)
+};
+HalfHeights half_heights(const RingShape& ring, double outer_diameter);
+
 // Deformation mode of a ring from its final crush ratio and wrap flag: "wrapped" when the
 // flag is set, else "flattened" (c ≥ 0.5), "crushed" (c ≥ 0.1) or "intact".
 std::string deformation_mode(double crush_ratio, bool wrap_around);

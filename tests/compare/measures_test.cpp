@@ -144,6 +144,39 @@ TEST(Measures, RejectsMalformedShapes) {
   EXPECT_THROW(axial_extent(bad), std::invalid_argument);
 }
 
+// Thesis §4.2.1's ring 2: the top half stays round, the bottom half is squashed (here an
+// elliptic bottom of semi-axis b = 0.2 R): the half heights tell the two halves apart,
+// where the crush only sees their sum.
+RingShape squashed_bottom(double b, int n, bool half) {
+  RingShape s;
+  s.half = half;
+  s.surface_offset = t;
+  const int count = half ? n / 2 + 1 : n;
+  for (int i = 0; i < count; ++i) {
+    const double th = 2 * pi * i / n;
+    const double vertical = std::cos(th) > 0 ? R : b;
+    s.points.emplace_back(R * std::sin(th), 0.3 + vertical * std::cos(th));
+    s.material_angle.push_back(th);
+  }
+  return s;
+}
+
+TEST(Measures, HalfHeightsOfIntactFlattenedAndSquashedRings) {
+  const HalfHeights intact = half_heights(circle(0.1, R, 96), D);
+  EXPECT_NEAR(intact.top, 1.0, 1e-12);
+  EXPECT_NEAR(intact.bottom, 1.0, 1e-12);
+  const double h = 0.15 * R;
+  const HalfHeights flat = half_heights(stadium(0.0, 0.5 * pi * (R - h), h, 96), D);
+  EXPECT_NEAR(flat.top, (h + t / 2) / (D / 2), 1e-3);
+  EXPECT_NEAR(flat.bottom, (h + t / 2) / (D / 2), 1e-3);
+  for (bool half : {false, true}) {
+    const HalfHeights sq = half_heights(squashed_bottom(0.2 * R, 96, half), D);
+    EXPECT_NEAR(sq.top, 1.0, 1e-12) << (half ? "half" : "full");
+    EXPECT_NEAR(sq.bottom, (0.2 * R + t / 2) / (D / 2), 1e-12) << (half ? "half" : "full");
+  }
+  EXPECT_THROW(half_heights(circle(0, R, 96), 0.0), std::invalid_argument);
+}
+
 TEST(Alternation, AlternatingChainScoresHigh) {
   const auto a = alternation({0.9, 0.1, 0.85, 0.15, 0.8, 0.3});
   EXPECT_GT(a.lag1, 0.5);
