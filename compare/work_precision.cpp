@@ -89,8 +89,10 @@ void write_bench_csv(const std::filesystem::path& file, const std::vector<BenchR
       out += ",,,";
     out += fmt::format(",{},{},{}", number(r.measures.absorbed_energy_j), number(r.measures.peak_force_n),
                        number(r.measures.alternation_index));
-    for (std::size_t i = 0; i < rings; ++i)
-      out += "," + (i < r.measures.crush_ratio.size() ? number(r.measures.crush_ratio[i]) : std::string());
+    for (std::size_t i = 0; i < rings; ++i) {
+      out += ',';
+      if (i < r.measures.crush_ratio.size()) out += number(r.measures.crush_ratio[i]);
+    }
     out += '\n';
   }
   std::ofstream f(file);
