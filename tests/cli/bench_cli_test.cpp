@@ -75,41 +75,28 @@ const Row& find(const std::vector<Row>& rows, const std::map<std::string, std::s
   return *found;
 }
 
-class BenchQuick : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = fs::temp_directory_path() / "ringcrush_bench_cli_test";
-    fs::remove_all(dir_);
-    run_ = cli_testing::ringcrush("bench --quick -o " + (dir_ / "out").string(),
-                                  "cd " + std::string(RINGCRUSH_SOURCE_DIR) + " &&");
-    if (run_.status == 0) rows_ = read_csv(dir_ / "out" / "bench.csv");
-  }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
-  static fs::path dir_;
-  static cli_testing::CommandRun run_;
-  static std::vector<Row> rows_;
+// One run of the quick bench for all checks (ctest runs every TEST in its own process, so a
+// suite-level fixture would run the bench once per test).
+struct QuickBench {
+  fs::path dir;
+  std::vector<Row> rows;
 };
-fs::path BenchQuick::dir_;
-cli_testing::CommandRun BenchQuick::run_;
-std::vector<Row> BenchQuick::rows_;
 
-TEST_F(BenchQuick, WritesTheTableAndTheDiagrams) {
-  ASSERT_EQ(run_.status, 0) << run_.output;
-  EXPECT_NE(run_.output.find("err_crush"), std::string::npos) << "no summary table on the terminal";
+void writes_table_and_diagrams(const QuickBench& b, const std::string& output) {
+  EXPECT_NE(output.find("err_crush"), std::string::npos) << "no summary table on the terminal";
   for (const char* f : {"bench.csv", "work_precision.svg", "model_error.svg", "summary.json"})
-    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
-  std::ifstream svg(dir_ / "out" / "work_precision.svg");
+    EXPECT_TRUE(fs::exists(b.dir / "out" / f)) << f;
+  std::ifstream svg(b.dir / "out" / "work_precision.svg");
   std::stringstream text;
   text << svg.rdbuf();
   EXPECT_NE(text.str().find("<svg"), std::string::npos);
   EXPECT_NE(text.str().find("fe hht"), std::string::npos);
   EXPECT_NE(text.str().find("hinge level 1 odeint"), std::string::npos);
-  ASSERT_GT(rows_.size(), 20u);
+  ASSERT_GT(b.rows.size(), 20u);
 }
 
-TEST_F(BenchQuick, TimesArePositiveAndErrorsFinite) {
-  ASSERT_EQ(run_.status, 0) << run_.output;
-  for (const auto& r : rows_) {
+void times_positive_errors_finite(const QuickBench& b) {
+  for (const auto& r : b.rows) {
     EXPECT_GT(num(r, "wall_s"), 0.0);
     EXPECT_GT(num(r, "cpu_s"), 0.0);
     for (const char* k : {"error_vs_reference", "energy_error_vs_reference", "peak_force_error_vs_reference"}) {
@@ -123,10 +110,9 @@ TEST_F(BenchQuick, TimesArePositiveAndErrorsFinite) {
   }
 }
 
-TEST_F(BenchQuick, EachReferenceHasNoErrorAgainstItself) {
-  ASSERT_EQ(run_.status, 0) << run_.output;
+void references_have_no_error(const QuickBench& b) {
   int references = 0;
-  for (const auto& r : rows_)
+  for (const auto& r : b.rows)
     if (r.at("reference") == "1") {
       ++references;
       EXPECT_EQ(num(r, "error_vs_reference"), 0.0);
@@ -138,37 +124,72 @@ TEST_F(BenchQuick, EachReferenceHasNoErrorAgainstItself) {
 }
 
 // A test that can fail: the refinement ladders must approach their references.
-TEST_F(BenchQuick, RefiningTheMeshAndTighteningTheToleranceReduceTheError) {
-  ASSERT_EQ(run_.status, 0) << run_.output;
+void refinement_reduces_error(const QuickBench& b) {
   // FE, HHT at the reference's HAFTOL: 8 elements per half ring against 12.
-  const auto& coarse = find(rows_, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
+  const auto& coarse = find(b.rows, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
                                     {"level_or_mesh", "8x1 half"}, {"tolerance", "1000"}});
-  const auto& finer = find(rows_, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
+  const auto& finer = find(b.rows, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
                                    {"level_or_mesh", "12x1 half"}, {"tolerance", "1000"}});
   EXPECT_GT(num(coarse, "error_vs_reference"), num(finer, "error_vs_reference"));
+  // and 12 against 16 at the scene's HAFTOL.
+  const auto& mid = find(b.rows, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
+                                  {"level_or_mesh", "12x1 half"}, {"tolerance", "10000"}});
+  const auto& fine = find(b.rows, {{"group", "work_precision"}, {"model", "fe"}, {"integrator", "hht"},
+                                   {"level_or_mesh", "16x1 half"}, {"tolerance", "10000"}});
+  EXPECT_GT(num(mid, "error_vs_reference"), num(fine, "error_vs_reference"));
   // Hinge Levels 0 and 1 on both integrators: rtol 1e-4 against 1e-8.
   for (const char* level : {"level 0", "level 1"})
     for (const char* integ : {"ida", "odeint"}) {
-      const auto& loose = find(rows_, {{"level_or_mesh", level}, {"integrator", integ}, {"tolerance", "0.0001"}});
-      const auto& tight = find(rows_, {{"level_or_mesh", level}, {"integrator", integ}, {"tolerance", "1e-08"}});
+      const auto& loose = find(b.rows, {{"level_or_mesh", level}, {"integrator", integ}, {"tolerance", "0.0001"}});
+      const auto& tight = find(b.rows, {{"level_or_mesh", level}, {"integrator", integ}, {"tolerance", "1e-08"}});
       EXPECT_GT(num(loose, "error_vs_reference"), num(tight, "error_vs_reference")) << level << " " << integ;
     }
 }
 
 // Item 7: asking for no outputs writes less and computes the same; the half model is the ring.
-TEST_F(BenchQuick, OutputsAndSymmetrySavingsKeepTheResult) {
-  ASSERT_EQ(run_.status, 0) << run_.output;
+void savings_keep_the_result(const QuickBench& b) {
   for (const char* integ : {"hht", "static"}) {
-    const auto& all = find(rows_, {{"group", "outputs"}, {"integrator", integ}, {"control", "all outputs"}});
-    const auto& none = find(rows_, {{"group", "outputs"}, {"integrator", integ}, {"control", "no outputs"}});
+    const auto& all = find(b.rows, {{"group", "outputs"}, {"integrator", integ}, {"control", "all outputs"}});
+    const auto& none = find(b.rows, {{"group", "outputs"}, {"integrator", integ}, {"control", "no outputs"}});
     EXPECT_LT(num(none, "bytes_written"), 0.5 * num(all, "bytes_written")) << integ;
     EXPECT_LT(num(none, "error_vs_reference"), 1e-9) << integ;
     EXPECT_LT(num(none, "energy_error_vs_reference"), 1e-9) << integ;
   }
-  const auto& half = find(rows_, {{"group", "symmetry"}, {"control", "half"}});
+  const auto& half = find(b.rows, {{"group", "symmetry"}, {"control", "half"}});
   // Half against full ring: the same crush energy and peak load within 1 %.
   EXPECT_LT(num(half, "energy_error_vs_reference"), 0.01);
   EXPECT_LT(num(half, "peak_force_error_vs_reference"), 0.01);
 }
 
 }  // namespace
+
+TEST(BenchQuick, TableDiagramsRefinementAndSavings) {
+  QuickBench b;
+  b.dir = fs::temp_directory_path() / "ringcrush_bench_cli_test";
+  fs::remove_all(b.dir);
+  const auto run = cli_testing::ringcrush("bench --quick -o " + (b.dir / "out").string(),
+                                          "cd " + std::string(RINGCRUSH_SOURCE_DIR) + " &&");
+  ASSERT_EQ(run.status, 0) << run.output;
+  b.rows = read_csv(b.dir / "out" / "bench.csv");
+  {
+    SCOPED_TRACE("table and diagrams");
+    writes_table_and_diagrams(b, run.output);
+  }
+  {
+    SCOPED_TRACE("times and errors");
+    times_positive_errors_finite(b);
+  }
+  {
+    SCOPED_TRACE("references");
+    references_have_no_error(b);
+  }
+  {
+    SCOPED_TRACE("refinement");
+    refinement_reduces_error(b);
+  }
+  {
+    SCOPED_TRACE("savings");
+    savings_keep_the_result(b);
+  }
+  fs::remove_all(b.dir);
+}
