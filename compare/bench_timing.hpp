@@ -34,8 +34,11 @@ struct Timing {
 
 // Runs `run()` `repeats` times and returns the median times; `last` receives the result of
 // the last run. Process CPU time, so that threaded runs are charged for all their threads.
+// A run that costs more than `repeat_below_cpu_s` is not repeated: its time is already far
+// above the timer's resolution and the scheduler's noise, and repeating it would only spend
+// the benchmark's budget.
 template <class Result, class Run>
-Timing time_repeated(int repeats, Run&& run, Result& last) {
+Timing time_repeated(int repeats, Run&& run, Result& last, double repeat_below_cpu_s = 1e300) {
   if (repeats < 1) throw std::invalid_argument("time_repeated: repeats must be at least 1");
   std::vector<double> wall, cpu;
   for (int k = 0; k < repeats; ++k) {
@@ -44,9 +47,10 @@ Timing time_repeated(int repeats, Run&& run, Result& last) {
     last = run();
     cpu.push_back(process_cpu_s() - c0);
     wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (cpu.back() > repeat_below_cpu_s) break;
   }
   Timing t;
-  t.repeats = repeats;
+  t.repeats = static_cast<int>(wall.size());
   t.min_wall_s = *std::min_element(wall.begin(), wall.end());
   t.wall_s = median(wall);
   t.cpu_s = median(cpu);
