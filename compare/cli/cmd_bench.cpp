@@ -1,7 +1,7 @@
 // ringcrush bench [--quick] -o DIR — run time against error (issue 8 items 6 and 7).
 //
-//   ringcrush bench --quick -o results/bench_quick     # the test suite's version, ~10 s CPU
-//   nice -n 5 ringcrush bench -o results/bench          # the README table, ~20 min CPU
+//   ringcrush bench --quick -o results/bench_quick     # the test suite's version, ~7 s CPU
+//   nice -n 5 ringcrush bench -o results/bench          # the README table, ~15 min CPU
 //
 // Work–precision (group "work_precision") on one impact scene (Test 30 welded by default):
 //  - FE: meshes (elements per half ring) × integrators × step controls — HHT-α with the
@@ -14,8 +14,9 @@
 // "Only what a scene needs" (item 7): the FE run with all fields, frames, history and plots
 //  written against none (group "outputs": time and bytes written), and the static thesis
 //  crush on the half (symmetric) model against the full ring (group "symmetry").
-// Times: median of --repeats runs (hinge and static rows) or --fe-repeats (FE dynamic rows),
-// process CPU time beside wall time (the machine is shared), the FE on one thread.
+// Times: median of --repeats runs (hinge and static rows; a run over 1 s CPU is not
+// repeated) or --fe-repeats (FE dynamic rows), process CPU time beside wall time (the
+// machine is shared), the FE on one thread.
 // Writes DIR/bench.csv, work_precision.svg, model_error.svg, summary.json, atomically.
 #include <fmt/format.h>
 #include <unistd.h>
