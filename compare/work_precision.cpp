@@ -113,7 +113,9 @@ std::string render_work_precision(const std::vector<BenchRow>& rows, const std::
       order.push_back(label);
       Series s;
       s.label = label;
-      s.markers = true;
+      // A hinge level's runs come in tolerance order: a line is its work–precision curve.
+      // The FE runs vary mesh and step control at once: points.
+      s.markers = r.model != "hinge";
       s.dashed = r.integrator == "ida" || r.integrator == "explicit";
       series.emplace(label, s);
     }

@@ -74,9 +74,8 @@ struct Plan {
   std::string why;
 };
 
-// Level 2 refuses rtol < 1e-6 (Level2Settings::min_relative_tolerance: its contact and
-// flow-law stiffness make tighter tolerances cost without changing the result), so its
-// ladder stops there.
+// Level 2 runs any rtol below Level2Settings::min_relative_tolerance (1e-6) at 1e-3 instead
+// (compare/hinge_run_2d.hpp), so its ladder stops at 1e-6.
 std::vector<HingeLevelPlan> hinge_levels(bool quick) {
   std::vector<HingeLevelPlan> out;
   const std::vector<double> smooth = quick ? std::vector<double>{1e-4, 1e-6, 1e-8}
