@@ -144,11 +144,7 @@ Scene fe_variant(const Scene& base, FeSolver solver, int elements_around, double
 }
 
 // One FE impact on one thread (so that CPU time is comparable between runs).
-fe::DynamicResult fe_dynamic(const Scene& s) {
-  fe::ChainInput chain = fe_chain_input(s);
-  chain.threads = 1;
-  return fe::run_dynamic(chain, fe_dynamic_solver_input(s));
-}
+fe::DynamicResult fe_dynamic(const Scene& s) { return run_scene_dynamic(s, 1); }
 
 // Bytes of every file under `dir`.
 double bytes_under(const fs::path& dir) {
