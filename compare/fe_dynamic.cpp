@@ -134,6 +134,12 @@ fe::DynamicSolverInput fe_dynamic_solver_input(const Scene& s) {
   return in;
 }
 
+fe::DynamicResult run_scene_dynamic(const Scene& scene, int threads) {
+  fe::ChainInput chain = fe_chain_input(scene);
+  chain.threads = threads;
+  return fe::run_dynamic(chain, fe_dynamic_solver_input(scene));
+}
+
 std::vector<RingShape> outer_surface_shapes(const fe::ChainMesh& mesh, const Eigen::VectorXd& u) {
   if (u.size() < static_cast<Eigen::Index>(2 * mesh.nodes.size()))
     throw std::invalid_argument(fmt::format("outer_surface_shapes: {} displacement values for {} nodes", u.size(),

@@ -22,6 +22,10 @@ namespace ringcrush::compare {
 fe::ChainInput fe_chain_input(const Scene& scene);
 fe::DynamicSolverInput fe_dynamic_solver_input(const Scene& scene);
 
+// The scene's FE impact: fe_chain_input + fe_dynamic_solver_input → fe::run_dynamic, with
+// `threads` element-loop threads (0: automatic; 1 for timings and for cases run in parallel).
+fe::DynamicResult run_scene_dynamic(const Scene& scene, int threads = 0);
+
 // The outer surface of each ring at displacement u (2 per node of `mesh`), ordered by material
 // angle from the top apex, ready for compare/measures (surface_offset 0).
 std::vector<RingShape> outer_surface_shapes(const fe::ChainMesh& mesh, const Eigen::VectorXd& u);

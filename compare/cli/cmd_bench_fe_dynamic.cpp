@@ -64,9 +64,7 @@ CaseOutcome run_case(const std::string& name, const Scene& s, int threads = 0) {
   CaseOutcome o;
   o.name = name;
   try {
-    fe::ChainInput chain = fe_chain_input(s);
-    chain.threads = threads;
-    o.result = fe::run_dynamic(chain, fe_dynamic_solver_input(s));
+    o.result = run_scene_dynamic(s, threads);
     o.run = fe_dynamic_run_result(s, o.result);  // refuses a non-finite result
     o.has_result = true;
     o.reason = o.result.end_reason;

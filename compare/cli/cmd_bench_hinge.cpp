@@ -22,6 +22,7 @@
 #include <exception>
 #include <thread>
 
+#include "compare/bench_timing.hpp"
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_1d.hpp"
 #include "compare/results_dir.hpp"
@@ -42,20 +43,6 @@ struct BenchOptions {
 
 using Clock = std::chrono::steady_clock;
 
-// CPU time of this thread: on a shared machine the wall time also measures the neighbours.
-double thread_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double l = -1.0;
-  in >> l;
-  return l;
-}
-
 hinge::ChainResult simulate(int level, const hinge::ChainInput& in, const hinge::HybridOptions& o) {
   return level == 0 ? hinge::simulate_level0(in, o, false) : hinge::simulate_level1(in, o, false);
 }
@@ -66,35 +53,16 @@ double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) 
   return e;
 }
 
-struct Timing {
-  double median_s, min_s, median_cpu_s;
+struct LevelTiming {
+  Timing time;
   hinge::ChainResult last;
 };
 
-Timing time_runs(int level, const hinge::ChainInput& in, const hinge::HybridOptions& o, int repeat) {
-  std::vector<double> wall, cpu;
-  Timing t{};
-  for (int k = 0; k < repeat; ++k) {
-    const auto start = Clock::now();
-    const double c0 = thread_cpu_s();
-    t.last = simulate(level, in, o);
-    cpu.push_back(thread_cpu_s() - c0);
-    wall.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-  }
-  std::sort(wall.begin(), wall.end());
-  std::sort(cpu.begin(), cpu.end());
-  t.median_s = wall[wall.size() / 2];
-  t.min_s = wall.front();
-  t.median_cpu_s = cpu[cpu.size() / 2];
+// Median wall and CPU time of `repeat` runs (compare/bench_timing.hpp).
+LevelTiming time_runs(int level, const hinge::ChainInput& in, const hinge::HybridOptions& o, int repeat) {
+  LevelTiming t;
+  t.time = time_repeated(repeat, [&] { return simulate(level, in, o); }, t.last);
   return t;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
 }
 
 void run(const BenchOptions& opt) {
@@ -135,13 +103,14 @@ void run(const BenchOptions& opt) {
         const auto t = time_runs(level, in, o, headline ? opt.repeat : std::max(3, opt.repeat / 4));
         const double err = max_abs_diff(t.last.final_permanent_crush_m, reference);
         const auto& st = t.last.outcome.statistics;
-        wp.add_row({double(level), integ == hinge::HybridIntegrator::Ida ? 1.0 : 0.0, rtol, t.median_s, t.min_s, t.median_cpu_s,
+        wp.add_row({double(level), integ == hinge::HybridIntegrator::Ida ? 1.0 : 0.0, rtol, t.time.wall_s, t.time.min_wall_s,
+                    t.time.cpu_s,
                     double(st.steps), double(st.function_evaluations), double(st.events), err, err / scale,
                     t.last.energy_balance_error()});
-        s.x.push_back(t.median_s * 1e3);
+        s.x.push_back(t.time.wall_s * 1e3);
         s.y.push_back(std::max(err / scale, 1e-16));
         fmt::print("{:>5} {:>7} {:>8.0e} {:>11.3f} {:>9.3f} {:>9.3f} {:>7} {:>7} {:>6} {:>12.2e} {:>10.2e}{}\n", level,
-                   hinge::to_string(integ), rtol, t.median_s * 1e3, t.min_s * 1e3, t.median_cpu_s * 1e3, st.steps,
+                   hinge::to_string(integ), rtol, t.time.wall_s * 1e3, t.time.min_wall_s * 1e3, t.time.cpu_s * 1e3, st.steps,
                    st.function_evaluations, st.events, err * 1e3, err / scale, headline ? "  *" : "");
       }
       curves.push_back(std::move(s));
