@@ -1,5 +1,5 @@
-// Pieces of a CalculiX deck shared by the static and the dynamic export
-// (compare/calculix_export.hpp): number formatting ccx reads back, id lists, rigid plate strips.
+// Pieces of a CalculiX deck (compare/calculix_export.hpp): numbers ccx reads back, id lists,
+// element blocks, rigid plate strips.
 #pragma once
 
 #include <Eigen/Core>

@@ -4,6 +4,7 @@
 // the load of ringcrush's own FE within 10 % at δ/d = 0.1 and 0.3.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -19,14 +20,14 @@
 #include "compare/calculix_export.hpp"
 #include "compare/fe_static.hpp"
 #include "compare/scene.hpp"
-#include "compare/fe_dynamic.hpp"
-#include "fe/chain/chain_mesh.hpp"
 #include "fe/mesh/ring_mesh.hpp"
 
 namespace fs = std::filesystem;
-using cli_testing::ringcrush;
 
 namespace {
+
+// The ringcrush executable (the helper's name would clash with namespace ringcrush here).
+cli_testing::CommandRun run_cli(const std::string& args) { return cli_testing::ringcrush(args); }
 
 fs::path scratch(const std::string& name) {
   const fs::path p = fs::temp_directory_path() / ("ringcrush_calculix_test_" + name);
@@ -111,7 +112,7 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
         << k;
   EXPECT_NE(deck.deck.find("*STEP, NLGEOM"), std::string::npos);
 
-  // Nodes: the ring mesh first, coordinates exactly (17 significant digits round-trip).
+  // Nodes: the ring mesh first, with its coordinates.
   const auto& node_lines = blocks.find("*NODE, NSET=NALL")->second;
   ASSERT_EQ(static_cast<int>(node_lines.size()), deck.nodes);
   ASSERT_EQ(deck.ring_nodes, static_cast<int>(mesh.nodes.size()));
@@ -122,8 +123,9 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
     ASSERT_EQ(static_cast<std::size_t>(v[0]), i + 1);
     xy[i + 1] = {v[1], v[2]};
     if (i < mesh.nodes.size()) {
-      EXPECT_EQ(v[1], mesh.nodes[i].x()) << "node " << i + 1;
-      EXPECT_EQ(v[2], mesh.nodes[i].y()) << "node " << i + 1;
+      // ccx reads 20 characters a field: the shortest exact decimal, or 15–16 digits.
+      EXPECT_NEAR(v[1], mesh.nodes[i].x(), 1e-15 * in.ring.outer_radius_m) << "node " << i + 1;
+      EXPECT_NEAR(v[2], mesh.nodes[i].y(), 1e-15 * in.ring.outer_radius_m) << "node " << i + 1;
     }
   }
   // Elements: the ring's connectivity, and every element (ring and plates) counter-clockwise
@@ -194,7 +196,7 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
 
 TEST(CalculixExport, CommandWritesTheDeckAndReadme) {
   const fs::path dir = scratch("cli");
-  const auto r = ringcrush("export-calculix " + coarse_scene(dir).string() + " -o " + (dir / "out").string());
+  const auto r = run_cli("export-calculix " + coarse_scene(dir).string() + " -o " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "thesis_coarse.inp"));
   EXPECT_TRUE(fs::exists(dir / "out" / "README.txt"));
@@ -203,54 +205,28 @@ TEST(CalculixExport, CommandWritesTheDeckAndReadme) {
 
 TEST(CalculixExport, BadInputExitsTwoNamingTheProblem) {
   const fs::path dir = scratch("bad");
-  auto r = ringcrush("export-calculix " + (dir / "missing.toml").string() + " -o " + (dir / "out").string());
+  auto r = run_cli("export-calculix " + (dir / "missing.toml").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("missing.toml"), std::string::npos) << r.output;
 
+  // A dynamic scene: named as not mapped (compare/calculix_export.hpp says why).
+  r = run_cli("export-calculix " + (fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_dynamic.toml").string() +
+              " -o " + (dir / "out").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("dynamic analysis"), std::string::npos) << r.output;
+
   // A static chain: the static FE (and so the deck) crushes one ring.
-  r = ringcrush("export-calculix " + coarse_scene(dir, {{"count = 1", "count = 2"}}).string() + " -o " +
-                (dir / "out").string());
+  const fs::path chain =
+      coarse_scene(dir, {{"count = 1", "count = 2"}, {"\\[far_end\\]", "[joints]\ntype = \"welded\"\n\n[far_end]"}});
+  r = run_cli("export-calculix " + chain.string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("one ring"), std::string::npos) << r.output;
 
-  r = ringcrush("export-calculix " + coarse_scene(dir, {{"plane_stress", "plane_strain"}}).string() + " -o " +
+  r = run_cli("export-calculix " + coarse_scene(dir, {{"plane_stress", "plane_strain"}}).string() + " -o " +
                 (dir / "out").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("plane_stress"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out")) << "a refused export leaves no directory";
-}
-
-// A dynamic chain: rings, impactor mass and velocity, joints and the *DYNAMIC step.
-TEST(CalculixExport, ChainDeckCarriesMassesJointsAndTheDynamicStep) {
-  using namespace ringcrush;
-  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_dynamic.toml");
-  text = std::regex_replace(text, std::regex("count = 6"), "count = 3");
-  text = std::regex_replace(text, std::regex("elements_around = 48"), "elements_around = 12");
-  const compare::Scene welded = compare::parse_scene(text, "chain.toml");
-  const compare::CalculixDeck deck = compare::calculix_deck(welded);
-  const fe::ChainTopology topo = fe::make_chain_topology(compare::fe_chain_input(welded));
-  EXPECT_EQ(deck.ring_nodes, topo.mesh.impactor_node);  // the chain's ring nodes, welds merged
-  EXPECT_EQ(deck.ring_elements, static_cast<int>(topo.mesh.elements.size()));
-  const auto blocks = deck_blocks(deck.deck);
-  for (const char* k : {"*DENSITY", "*RIGID BODY, NSET=IMPACTOR_NODES", "*MASS, ELSET=IMPACTOR_MASS",
-                        "*INITIAL CONDITIONS, TYPE=VELOCITY"})
-    EXPECT_NE(deck.deck.find(k), std::string::npos) << k;
-  EXPECT_NE(deck.deck.find("*DYNAMIC"), std::string::npos);
-  // The model's impactor mass: physical / (symmetry × L / s).
-  const auto mass = numbers(blocks.find("*MASS, ELSET=IMPACTOR_MASS")->second.at(0)).at(0);
-  EXPECT_NEAR(mass * deck.load_factor, welded.impactor->mass_kg, 1e-12);
-  const auto& v = blocks.find("*INITIAL CONDITIONS, TYPE=VELOCITY")->second;
-  EXPECT_EQ(numbers(v.at(0)).at(2), -welded.impactor->velocity_m_s);
-  EXPECT_EQ(numbers(blocks.find("*DENSITY")->second.at(0)).at(0), welded.rings.material.density_kg_m3);
-  // Welded: no ring-to-ring contact (the joint is a shared node); impactor and target pairs.
-  EXPECT_EQ(blocks.count("*CONTACT PAIR, INTERACTION=PENALTY, TYPE=NODE TO SURFACE"), 2u);
-
-  // Free joints: one contact pair per joint more; plates: two per plate, plus a rigid body each.
-  const compare::Scene free_chain =
-      compare::parse_scene(std::regex_replace(text, std::regex("type = \"welded\""), "type = \"free\""), "free.toml");
-  const auto free_blocks = deck_blocks(compare::calculix_deck(free_chain).deck);
-  EXPECT_EQ(free_blocks.count("*CONTACT PAIR, INTERACTION=PENALTY, TYPE=NODE TO SURFACE"), 2u + 2u);
-  EXPECT_GT(compare::calculix_deck(free_chain).ring_nodes, deck.ring_nodes);  // no merged weld nodes
 }
 
 TEST(CalculixExport, ParsesCcxTotalForces) {
@@ -279,7 +255,7 @@ TEST(CalculixExport, CcxLoadAgreesWithRingcrushWithinTenPercent) {
                     "the cross-check";
   const fs::path dir = scratch("ccx");
   const fs::path scene = coarse_scene(dir);
-  auto r = ringcrush("export-calculix " + scene.string() + " -o " + (dir / "ccx").string());
+  auto r = run_cli("export-calculix " + scene.string() + " -o " + (dir / "ccx").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const auto t0 = std::chrono::steady_clock::now();
   const std::string cmd = "cd " + (dir / "ccx").string() + " && ccx -i thesis_coarse > ccx.log 2>&1";
@@ -289,7 +265,7 @@ TEST(CalculixExport, CcxLoadAgreesWithRingcrushWithinTenPercent) {
                                                                  "PLATE_TOP_NODES");
   ASSERT_GT(forces.size(), 5u);
 
-  r = ringcrush("fe " + scene.string() + " -q -o " + (dir / "fe").string());
+  r = run_cli("fe " + scene.string() + " -q -o " + (dir / "fe").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::vector<double> fe_delta, fe_force;
   {
