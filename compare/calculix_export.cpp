@@ -44,7 +44,7 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
   // Plates reach one diameter to each side of the axis: a flattened half ring spreads its
   // outer surface over at most π R / 2 ≈ 0.79 D on each plate.
   const int plate_elements = half ? 8 : 16;
-  const double plate_thickness = 2 * (in.ring.outer_radius_m - in.ring.inner_radius_m);
+  const double plate_thickness = 2 * wall;
   const double x_lo = half ? 0.0 : -diameter;
   const PlateStrip bottom = make_plate_strip(x_lo, diameter, plate_elements, -r_out, plate_thickness, false);
   const PlateStrip top = make_plate_strip(x_lo, diameter, plate_elements, r_out, plate_thickness, true);
