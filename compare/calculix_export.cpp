@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -70,10 +71,12 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
       "rigid plates: strips of CPS8 elements every node of which carries the plate's motion (bottom held, top "
       "driven), i.e. kinematically rigid; the load is the total reaction RF over the driven plate's nodes");
   out.approximations.push_back(
-      "inner-wall self contact (lock-up, thesis 3.6.3) is not written: compare loads only at deflections before "
-      "ringcrush reports self contact (summary.json self_contact_first_deflection_m)");
+      "inner-wall self contact (lock-up, thesis 3.6.3): the inner faces within 60 deg of the bottom against those "
+      "within 60 deg of the top (ringcrush pairs any inner points more than 60 deg of arc apart on opposite "
+      "halves, with Hermite-smoothed master segments)");
   out.approximations.push_back(fmt::format(
-      "contact: node-to-surface penalty, linear pressure-overclosure of slope scale * E / h = {:.6g} Pa/m "
+      "contact: surface-to-surface penalty (ccx's node-to-surface diverged at the onset of the inner-wall contact), "
+      "linear pressure-overclosure of slope scale * E / h = {:.6g} Pa/m "
       "(ringcrush's per-node penalty divided by the node's tributary area); ringcrush's Hermite smoothing of the "
       "master surface (fe.contact_smoothing) has no ccx counterpart against flat plates",
       penalty_slope));
@@ -131,6 +134,22 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
   // Outer surface: face 1 (nodes 1-5-2) of the outer layer of elements (ring_mesh.cpp order).
   o << "*SURFACE, NAME=RING_OUTER, TYPE=ELEMENT\n";
   for (int e = 0; e < out.ring_elements; e += in.mesh.elements_through) o << e + 1 << ", S1\n";
+  // Inner surface for the lock-up (thesis §3.6.3): face 3 (nodes 3-7-4) of the inner layer,
+  // split by the reference angle φ of the face's middle node into the part near the bottom
+  // plate (φ within π/3 of 0) and near the top (within π/3 of π). Faces nearer the sides are
+  // left out: ringcrush never pairs inner points closer than π/3 of arc
+  // (ContactInput::self_contact_min_separation_rad), and at lock-up the walls meet at the flats.
+  const double pi = std::numbers::pi;
+  std::vector<int> inner_bottom, inner_top;
+  for (int e = in.mesh.elements_through - 1; e < out.ring_elements; e += in.mesh.elements_through) {
+    const double phi = mesh.node_angle[static_cast<std::size_t>(mesh.elements[static_cast<std::size_t>(e)][6])];
+    if (std::min(phi, 2 * pi - phi) < pi / 3) inner_bottom.push_back(e + 1);
+    if (std::abs(phi - pi) < pi / 3) inner_top.push_back(e + 1);
+  }
+  o << "*SURFACE, NAME=RING_INNER_BOTTOM, TYPE=ELEMENT\n";
+  for (int e : inner_bottom) o << e << ", S3\n";
+  o << "*SURFACE, NAME=RING_INNER_TOP, TYPE=ELEMENT\n";
+  for (int e : inner_top) o << e << ", S3\n";
   o << "*SURFACE, NAME=PLATE_BOTTOM_FACE, TYPE=ELEMENT\nPLATE_BOTTOM, S1\n";
   o << "*SURFACE, NAME=PLATE_TOP_FACE, TYPE=ELEMENT\nPLATE_TOP, S1\n";
 
@@ -148,8 +167,10 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
   o << "** frictionless penalty contact, pressure = K * overclosure (K = scale * E / h)\n";
   o << "*SURFACE INTERACTION, NAME=RING_PLATE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
     << num(penalty_slope) << "\n";
-  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=NODE TO SURFACE\nRING_OUTER, PLATE_BOTTOM_FACE\n";
-  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=NODE TO SURFACE\nRING_OUTER, PLATE_TOP_FACE\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_OUTER, PLATE_BOTTOM_FACE\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_OUTER, PLATE_TOP_FACE\n";
+  o << "** inner wall against itself (surface-to-surface contact is symmetric in ccx)\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_INNER_BOTTOM, RING_INNER_TOP\n";
 
   o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nPLATE_BOTTOM_NODES, 1, 2\nPLATE_TOP_NODES, 1, 1\n";
 

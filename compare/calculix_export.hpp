@@ -6,8 +6,10 @@
 // fe/mesh/ring_mesh (CPS8; section thickness below), *MATERIAL with *ELASTIC and the
 // scene's *PLASTIC table, each rigid plate a strip of CPS8 elements every node of which
 // carries the plate's motion (bottom: held; top: the crush as *BOUNDARY in a *STATIC,
-// NLGEOM step), the outer ring surface against each plate face as a node-to-surface
-// *CONTACT PAIR with a linear penalty of the same stiffness per unit area ringcrush uses
+// NLGEOM step), the outer ring surface against each plate face and the inner wall near the
+// bottom against the inner wall near the top (lock-up) as surface-to-surface *CONTACT PAIRs
+// (node-to-surface diverged at the onset of the inner-wall contact) with a linear penalty of
+// the same stiffness per unit area ringcrush uses
 // (fe_input.hpp ContactInput: k = scale · E · w L / h per node ⇒ pressure / overclosure =
 // scale · E / h), the x = 0 symmetry of a half model, and *NODE PRINT of the driven plate's
 // total reaction (RF, TOTALS=ONLY) and of its reference node's U.

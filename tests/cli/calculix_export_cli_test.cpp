@@ -104,9 +104,9 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
   for (const char* k : {"*HEADING", "*NODE, NSET=NALL", "*MATERIAL, NAME=RING_MATERIAL", "*ELASTIC", "*PLASTIC",
                         "*SOLID SECTION, ELSET=RING, MATERIAL=RING_MATERIAL",
                         "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-                        "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=NODE TO SURFACE", "*STATIC", "*END STEP",
+                        "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE", "*STATIC", "*END STEP",
                         "*NODE PRINT, NSET=PLATE_TOP_NODES, TOTALS=ONLY"})
-    EXPECT_EQ(blocks.count(k), k == std::string("*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=NODE TO SURFACE") ? 2u
+    EXPECT_EQ(blocks.count(k), k == std::string("*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE") ? 3u
                                : k == std::string("*ELASTIC")                                                ? 2u
                                                                                                              : 1u)
         << k;
@@ -153,6 +153,10 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
     const auto v = numbers(ring_lines[e]);
     for (int a = 0; a < 8; ++a) EXPECT_EQ(static_cast<int>(v[1 + a]), mesh.elements[e][a] + 1);
   }
+  // Inner wall (lock-up): faces near the bottom and near the top, the same count by symmetry.
+  const auto& inner_bottom = blocks.find("*SURFACE, NAME=RING_INNER_BOTTOM, TYPE=ELEMENT")->second;
+  EXPECT_GT(inner_bottom.size(), 0u);
+  EXPECT_EQ(inner_bottom.size(), blocks.find("*SURFACE, NAME=RING_INNER_TOP, TYPE=ELEMENT")->second.size());
   // Outer surface: one face per element around the ring.
   EXPECT_EQ(blocks.find("*SURFACE, NAME=RING_OUTER, TYPE=ELEMENT")->second.size(),
             static_cast<std::size_t>(2 * in.mesh.elements_around / (in.mesh.half_ring ? 2 : 1)));
