@@ -174,9 +174,10 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
 
   o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nPLATE_BOTTOM_NODES, 1, 2\nPLATE_TOP_NODES, 1, 1\n";
 
-  // ccx's default *CONTROLS: they converge on the thesis ring with two cut-backs in the first
-  // increment only; more iterations and cut-backs (TIME INCREMENTATION 8,10,9,20,10,4,0,10)
-  // changed nothing (the same 279 iterations), so no *CONTROLS card is written.
+  // ccx's default *CONTROLS: they converge on the thesis ring with one or two cut-backs in the
+  // first increment only; more iterations and cut-backs (TIME INCREMENTATION
+  // 8,10,9,20,10,4,0,10) changed nothing (the same 279 iterations with node-to-surface
+  // pairs), so no *CONTROLS card is written.
   o << fmt::format("*STEP, NLGEOM, INC={}\n", in.solver.max_increments);
   o << "** initial, total, minimum, maximum increment as fractions of the crush (scene fe.*_increment)\n";
   o << "*STATIC\n"

@@ -4,6 +4,7 @@
 // the load of ringcrush's own FE within 10 % at δ/d = 0.1 and 0.3.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -196,6 +197,22 @@ TEST(CalculixExport, DeckCarriesTheMeshMaterialContactAndStep) {
   EXPECT_EQ(fixed_count, mesh.fixed_x.size());
   EXPECT_EQ(deck.symmetry_factor, 2.0);
   EXPECT_NE(deck.readme.find("selective"), std::string::npos);  // the approximation is listed
+}
+
+// A full ring: no symmetry factor, plates on both sides of the axis, two x restraints.
+TEST(CalculixExport, FullRingDeck) {
+  using namespace ringcrush;
+  const fs::path dir = scratch("full");
+  const compare::Scene s = compare::load_scene(coarse_scene(dir, {{"symmetry = \"half\"", "symmetry = \"full\""}}));
+  const compare::CalculixDeck deck = compare::calculix_deck(s);
+  EXPECT_EQ(deck.symmetry_factor, 1.0);
+  EXPECT_NEAR(deck.load_factor, s.rings.width_m / deck.section_thickness_m, 1e-12 * deck.load_factor);
+  EXPECT_EQ(deck.ring_elements, 2 * s.fe.elements_around);
+  const auto blocks = deck_blocks(deck.deck);
+  EXPECT_EQ(numbers(blocks.find("*NSET, NSET=RING_FIXED_X")->second.at(0)).size(), 2u);
+  double x_min = 0;
+  for (const auto& line : blocks.find("*NODE, NSET=NALL")->second) x_min = std::min(x_min, numbers(line).at(1));
+  EXPECT_NEAR(x_min, -s.rings.outer_diameter_m, 1e-12);  // plates reach one diameter to each side
 }
 
 TEST(CalculixExport, CommandWritesTheDeckAndReadme) {
