@@ -78,7 +78,7 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
       "contact: surface-to-surface penalty (ccx's node-to-surface diverged at the onset of the inner-wall contact), "
       "linear pressure-overclosure of slope scale * E / h = {:.6g} Pa/m "
       "(ringcrush's per-node penalty divided by the node's tributary area); ringcrush's Hermite smoothing of the "
-      "master surface (fe.contact_smoothing) has no ccx counterpart against flat plates",
+      "inner-wall master segments (fe.contact_smoothing) has no ccx counterpart",
       penalty_slope));
   if (section == CalculixSection::FullWidth)
     out.approximations.push_back(fmt::format(
