@@ -1,0 +1,236 @@
+#include "compare/calculix_export.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "compare/calculix_deck_parts.hpp"
+#include "compare/fe_static.hpp"
+#include "compare/version.hpp"
+#include "fe/mesh/ring_mesh.hpp"
+
+namespace ringcrush::compare {
+using namespace calculix_parts;
+
+CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
+  if (s.analysis.type != AnalysisType::Static)
+    throw std::invalid_argument(fmt::format(
+        "export-calculix: scene {} is a dynamic analysis; only static scenes (one ring between rigid plates) are "
+        "mapped. A chain's impactor cannot be written for ccx 2.20: as a *RIGID BODY (or *EQUATION-tied) strip of "
+        "2-D elements with *MASS its *DYNAMIC step diverges at the second increment, and an *INITIAL CONDITIONS "
+        "velocity on CPS8 nodes is reported but never moves them (a free CPS8 element at 30 m/s keeps zero "
+        "displacement, a C3D8 moves 0.3 mm in 10 us)",
+        s.name));
+  // The same FE input (and the same refusals: chains, plane strain, friction) as `ringcrush fe`.
+  const fe::FeInput in = fe_static_input(s);
+  const fe::RingMesh mesh = fe::make_ring_mesh(in.ring, in.mesh);
+
+  CalculixDeck out;
+  const double r_out = in.ring.outer_radius_m;
+  const double diameter = 2 * r_out;
+  const bool half = in.mesh.half_ring;
+  out.symmetry_factor = half ? 2.0 : 1.0;
+  // See the header: with a slab one tenth of the wall thick the elastic ring stiffness is
+  // within 0.3 % of plane stress's (measured with ccx 2.20 on the thesis ring).
+  const double wall = in.ring.outer_radius_m - in.ring.inner_radius_m;
+  out.section_thickness_m = section == CalculixSection::FullWidth ? in.ring.width_m : 0.1 * wall;
+  out.load_factor = out.symmetry_factor * in.ring.width_m / out.section_thickness_m;
+  out.ring_nodes = static_cast<int>(mesh.nodes.size());
+  out.ring_elements = static_cast<int>(mesh.elements.size());
+
+  // Plates reach one diameter to each side of the axis: a flattened half ring spreads its
+  // outer surface over at most π R / 2 ≈ 0.79 D on each plate.
+  const int plate_elements = half ? 8 : 16;
+  const double plate_thickness = 2 * wall;
+  const double x_lo = half ? 0.0 : -diameter;
+  const PlateStrip bottom = make_plate_strip(x_lo, diameter, plate_elements, -r_out, plate_thickness, false);
+  const PlateStrip top = make_plate_strip(x_lo, diameter, plate_elements, r_out, plate_thickness, true);
+
+  const int bottom_node0 = out.ring_nodes + 1;  // 1-based first ids
+  const int top_node0 = bottom_node0 + static_cast<int>(bottom.nodes.size());
+  const int bottom_elem0 = out.ring_elements + 1;
+  const int top_elem0 = bottom_elem0 + static_cast<int>(bottom.elements.size());
+  out.nodes = top_node0 - 1 + static_cast<int>(top.nodes.size());
+  out.elements = top_elem0 - 1 + static_cast<int>(top.elements.size());
+  out.driven_reference_node = top_node0 + top.reference;
+
+  const auto& mat = s.rings.material;
+  // Penalty per unit contact area: ringcrush's node stiffness scale · E · (w L) / h divided by
+  // the node's tributary area w L (fe/contact/ring_contact.cpp).
+  const double penalty_slope = in.contact.penalty_scale * mat.youngs_modulus_pa / mesh.element_depth;
+  const std::string type = element_type(s.fe.integration);
+  if (s.fe.integration == Integration::Selective)
+    out.approximations.push_back(
+        "fe.integration = \"selective\" (volumetric strain at the 2x2 points) has no ccx element: written as CPS8 "
+        "(full 3x3 integration)");
+  out.approximations.push_back(
+      "rigid plates: strips of CPS8 elements every node of which carries the plate's motion (bottom held, top "
+      "driven), i.e. kinematically rigid; the load is the total reaction RF over the driven plate's nodes");
+  out.approximations.push_back(
+      "inner-wall self contact (lock-up, thesis 3.6.3): the inner faces within 60 deg of the bottom against those "
+      "within 60 deg of the top (ringcrush pairs any inner points more than 60 deg of arc apart on opposite "
+      "halves, with Hermite-smoothed master segments)");
+  out.approximations.push_back(fmt::format(
+      "contact: surface-to-surface penalty (ccx's node-to-surface diverged at the onset of the inner-wall contact), "
+      "linear pressure-overclosure of slope scale * E / h = {:.6g} Pa/m "
+      "(ringcrush's per-node penalty divided by the node's tributary area); ringcrush's Hermite smoothing of the "
+      "inner-wall master segments (fe.contact_smoothing) has no ccx counterpart",
+      penalty_slope));
+  if (section == CalculixSection::FullWidth)
+    out.approximations.push_back(fmt::format(
+        "section thickness = ring width {:.6g} m: ccx expands CPS8 into a one-layer C3D20 slab that thick, which "
+        "bends like a wide plate (near plane strain), not in the plane stress of ringcrush's CPS8",
+        in.ring.width_m));
+  else
+    out.approximations.push_back(fmt::format(
+        "plane stress: ccx expands CPS8 into a one-layer C3D20 slab of the section thickness; a slab as wide as the "
+        "ring bends near plane strain, so the section is a thin slab s = t/10 = {:.6g} m (elastic ring stiffness "
+        "within 0.3 % of plane stress's) and forces scale by L/s = {:.6g}",
+        out.section_thickness_m, in.ring.width_m / out.section_thickness_m));
+  if (half)
+    out.approximations.push_back("half model (x >= 0, u_x = 0 on x = 0): the whole ring carries twice the half's load");
+  out.approximations.push_back(fmt::format(
+      "the ring's load = {:.6g} x |fy| of the total force of set PLATE_TOP_NODES printed in the .dat file",
+      out.load_factor));
+
+  std::ostringstream o;
+  o << fmt::format("** CalculiX (ccx 2.20) deck of ringcrush scene {} -- written by ringcrush {}\n", s.name,
+                   version());
+  o << "** Units SI (m, N, Pa). Static crush of one ring between rigid plates (thesis Anexo I).\n";
+  o << fmt::format("** The ring's load = {:.6g} x |fy| of the total force of PLATE_TOP_NODES (.dat)\n", out.load_factor);
+  o << "*HEADING\n" << fmt::format("ringcrush scene {}: {}\n", s.name, s.title);
+
+  o << "** Ring: the mesh of fe/mesh/ring_mesh (nodes 1.." << out.ring_nodes << "), then the plates.\n";
+  o << "*NODE, NSET=NALL\n";
+  int id = 1;
+  for (const auto& p : mesh.nodes) o << fmt::format("{}, {}, {}\n", id++, num(p.x()), num(p.y()));
+  for (const auto& p : bottom.nodes) o << fmt::format("{}, {}, {}\n", id++, num(p.x()), num(p.y()));
+  for (const auto& p : top.nodes) o << fmt::format("{}, {}, {}\n", id++, num(p.x()), num(p.y()));
+
+  write_elements(o, "RING", type, mesh.elements, 1, 1);
+  write_elements(o, "PLATE_BOTTOM", "CPS8", bottom.elements, bottom_elem0, bottom_node0);
+  write_elements(o, "PLATE_TOP", "CPS8", top.elements, top_elem0, top_node0);
+
+  std::vector<int> ids;
+
+  o << "*NSET, NSET=PLATE_BOTTOM_NODES\n";
+  write_ids(o, id_range(bottom_node0, bottom.nodes.size()));
+  o << "*NSET, NSET=PLATE_TOP_NODES\n";
+  write_ids(o, id_range(top_node0, top.nodes.size()));
+  o << "*NSET, NSET=DRIVEN_REF\n" << out.driven_reference_node << "\n";
+  ids.clear();
+  for (int n : mesh.fixed_x) ids.push_back(n + 1);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  o << (half ? "** x = 0 symmetry plane of the half ring (XSYMM)\n"
+             : "** u_x of the two outer points on the loading axis (frictionless plates leave x free)\n");
+  o << "*NSET, NSET=RING_FIXED_X\n";
+  write_ids(o, ids);
+
+  // Outer surface: face 1 (nodes 1-5-2) of the outer layer of elements (ring_mesh.cpp order).
+  o << "*SURFACE, NAME=RING_OUTER, TYPE=ELEMENT\n";
+  for (int e = 0; e < out.ring_elements; e += in.mesh.elements_through) o << e + 1 << ", S1\n";
+  // Inner surface for the lock-up (thesis §3.6.3): face 3 (nodes 3-7-4) of the inner layer,
+  // split by the reference angle φ of the face's middle node into the part near the bottom
+  // plate (φ within π/3 of 0) and near the top (within π/3 of π). Faces nearer the sides are
+  // left out: ringcrush never pairs inner points closer than π/3 of arc
+  // (ContactInput::self_contact_min_separation_rad), and at lock-up the walls meet at the flats.
+  const double pi = std::numbers::pi;
+  std::vector<int> inner_bottom, inner_top;
+  for (int e = in.mesh.elements_through - 1; e < out.ring_elements; e += in.mesh.elements_through) {
+    const double phi = mesh.node_angle[static_cast<std::size_t>(mesh.elements[static_cast<std::size_t>(e)][6])];
+    if (std::min(phi, 2 * pi - phi) < pi / 3) inner_bottom.push_back(e + 1);
+    if (std::abs(phi - pi) < pi / 3) inner_top.push_back(e + 1);
+  }
+  o << "*SURFACE, NAME=RING_INNER_BOTTOM, TYPE=ELEMENT\n";
+  for (int e : inner_bottom) o << e << ", S3\n";
+  o << "*SURFACE, NAME=RING_INNER_TOP, TYPE=ELEMENT\n";
+  for (int e : inner_top) o << e << ", S3\n";
+  o << "*SURFACE, NAME=PLATE_BOTTOM_FACE, TYPE=ELEMENT\nPLATE_BOTTOM, S1\n";
+  o << "*SURFACE, NAME=PLATE_TOP_FACE, TYPE=ELEMENT\nPLATE_TOP, S1\n";
+
+  o << "*MATERIAL, NAME=RING_MATERIAL\n*ELASTIC\n"
+    << num(mat.youngs_modulus_pa) << ", " << num(mat.poisson_ratio) << "\n";
+  o << "** isotropic hardening, flat after the last point (scene rings.material.hardening)\n*PLASTIC\n";
+  for (const auto& h : mat.hardening) o << num(h.yield_stress_pa) << ", " << num(h.plastic_strain) << "\n";
+  o << "** the plates only carry prescribed motion; their material never matters\n";
+  o << "*MATERIAL, NAME=PLATE_MATERIAL\n*ELASTIC\n" << num(mat.youngs_modulus_pa) << ", "
+    << num(mat.poisson_ratio) << "\n";
+  o << "*SOLID SECTION, ELSET=RING, MATERIAL=RING_MATERIAL\n" << num(out.section_thickness_m) << "\n";
+  o << "*SOLID SECTION, ELSET=PLATE_BOTTOM, MATERIAL=PLATE_MATERIAL\n" << num(out.section_thickness_m) << "\n";
+  o << "*SOLID SECTION, ELSET=PLATE_TOP, MATERIAL=PLATE_MATERIAL\n" << num(out.section_thickness_m) << "\n";
+
+  o << "** frictionless penalty contact, pressure = K * overclosure (K = scale * E / h)\n";
+  o << "*SURFACE INTERACTION, NAME=RING_PLATE\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+    << num(penalty_slope) << "\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_OUTER, PLATE_BOTTOM_FACE\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_OUTER, PLATE_TOP_FACE\n";
+  o << "** inner wall against itself (surface-to-surface contact is symmetric in ccx)\n";
+  o << "*CONTACT PAIR, INTERACTION=RING_PLATE, TYPE=SURFACE TO SURFACE\nRING_INNER_BOTTOM, RING_INNER_TOP\n";
+
+  o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nPLATE_BOTTOM_NODES, 1, 2\nPLATE_TOP_NODES, 1, 1\n";
+
+  // ccx's default *CONTROLS: they converge on the thesis ring with one or two cut-backs in the
+  // first increment only; more iterations and cut-backs (TIME INCREMENTATION
+  // 8,10,9,20,10,4,0,10) changed nothing (the same 279 iterations with node-to-surface
+  // pairs), so no *CONTROLS card is written.
+  o << fmt::format("*STEP, NLGEOM, INC={}\n", in.solver.max_increments);
+  o << "** initial, total, minimum, maximum increment as fractions of the crush (scene fe.*_increment)\n";
+  o << "*STATIC\n"
+    << num(in.solver.initial_increment) << ", 1.0, " << num(in.solver.min_increment) << ", "
+    << num(in.solver.max_increment) << "\n";
+  o << "** the driven plate travels analysis.crush_m toward the ring\n";
+  o << "*BOUNDARY\nPLATE_TOP_NODES, 2, 2, " << num(-in.solver.crush_m) << "\n";
+  o << "*NODE PRINT, NSET=PLATE_TOP_NODES, TOTALS=ONLY\nRF\n";
+  o << "*NODE PRINT, NSET=DRIVEN_REF\nU\n";
+  o << "*NODE FILE\nU, RF\n*EL FILE\nS, PEEQ\n*END STEP\n";
+  out.deck = o.str();
+
+  std::ostringstream r;
+  r << fmt::format("CalculiX deck of ringcrush scene {} ({})\n\n", s.name, s.title);
+  r << fmt::format("Run:    ccx -i {}        (writes {}.dat, {}.frd)\n", s.name, s.name, s.name);
+  r << fmt::format(
+      "Load:   the total force of set PLATE_TOP_NODES in {}.dat (\"total force (fx,fy,fz)\"); the ring's load is "
+      "{:.6g} x |fy| at time t, deflection t x {} m.\n\n",
+      s.name, out.load_factor, num(in.solver.crush_m));
+  r << fmt::format("Mapped: {} nodes, {} elements ({} ring {} on the ringcrush mesh: {} per half ring x {} through, "
+                   "grading {}; {} + {} plate CPS8)\n",
+                   out.nodes, out.elements, out.ring_elements, type, in.mesh.elements_around,
+                   in.mesh.elements_through, in.mesh.grading, bottom.elements.size(), top.elements.size());
+  r << "        *SOLID SECTION (thickness: see below); *ELASTIC, *PLASTIC (hardening table); *CONTACT PAIR\n"
+       "        ring outer surface to each plate face; *BOUNDARY symmetry / plate motion; *STATIC, NLGEOM step\n"
+       "        with the scene's increments; *NODE PRINT of the driven plate's RF (totals) and reference node U.\n";
+  r << "Approximations and what is not mapped:\n";
+  for (const auto& a : out.approximations) r << "  - " << a << "\n";
+  out.readme = r.str();
+  return out;
+}
+
+std::vector<CcxTotalForce> parse_ccx_total_forces(const std::string& text, const std::string& nset) {
+  std::vector<CcxTotalForce> out;
+  std::string upper = nset;
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+  const std::string head = "total force (fx,fy,fz) for set " + upper + " and time";
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto at = line.find(head);
+    if (at == std::string::npos) continue;
+    CcxTotalForce f{};
+    std::istringstream t(line.substr(at + head.size()));
+    if (!(t >> f.time)) throw std::runtime_error("ccx .dat: no time after \"" + head + "\"");
+    std::string values;
+    while (std::getline(in, values) && values.find_first_not_of(" \t\r") == std::string::npos) {
+    }
+    std::istringstream v(values);
+    double fz = 0;
+    if (!(v >> f.fx >> f.fy >> fz)) throw std::runtime_error("ccx .dat: no force values after \"" + line + "\"");
+    out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace ringcrush::compare
