@@ -59,6 +59,15 @@ struct ContactInput {
   // Inner-wall points closer than this (reference arc angle) are joined by the wall itself
   // and never paired.
   double self_contact_min_separation_rad = std::numbers::pi / 3.0;
+  // Coulomb friction at the rigid plates (penalty-regularised, fe/contact/plate_friction.hpp;
+  // scene key `friction_coefficient`). 0 = frictionless, the thesis: the friction code is
+  // then skipped entirely and the tangent stays symmetric. The inner wall against itself
+  // stays frictionless whatever μ.
+  double friction_coefficient = 0.0;
+  // Tangential (stick) penalty of a plate contact node = tangential_penalty_scale · E · L · w / h,
+  // scaled exactly as the normal penalty (scene key `friction_penalty_scale`): the elastic
+  // slip before sliding is μ f_n / k_t, a fraction μ · (normal penetration) at scale 1.
+  double tangential_penalty_scale = 1.0;
 };
 
 struct StaticSolverInput {

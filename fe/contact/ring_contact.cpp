@@ -1,5 +1,7 @@
 #include "fe/contact/ring_contact.hpp"
 
+#include "fe/contact/plate_friction.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -90,10 +92,16 @@ bool self_contact_force(const CurvePiece& p, const double* xy, double k, double 
 RingContact::RingContact(const RingMesh& mesh, const ContactInput& input, double e, double width)
     : mesh_(mesh), in_(input), width_(width), band_(1e-9 * mesh.element_depth) {
   const double kscale = input.penalty_scale * e * width / mesh.element_depth;
+  const double ktscale = input.tangential_penalty_scale * e * width / mesh.element_depth;
   for (double w : mesh.outer_weight) {
     k_outer_.push_back(kscale * w);
+    kt_outer_.push_back(ktscale * w);
     area_outer_.push_back(w * width);
   }
+  // Every node starts anchored at its reference position on both plates.
+  for (int node : mesh.outer_nodes)
+    for (int plate = 0; plate < 2; ++plate) anchor_n_.push_back(mesh.nodes[node].x());
+  anchor_trial_ = anchor_n_;
   if (!input.self_contact) return;
   const double pi = std::numbers::pi;
   // Lower (y < 0) and upper (y > 0) halves of the inner wall in the reference configuration.
@@ -169,8 +177,10 @@ bool RingContact::self_pair(const Pass&, const Eigen::Vector2d& xs, int slave, c
 }
 
 void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, double y_bottom, bool want_tangent,
-                           bool want_pressure, std::vector<ContactContribution>& out, ContactState& st) const {
+                           bool want_pressure, std::vector<ContactContribution>& out, ContactState& st) {
   st = ContactState{};
+  const bool friction = frictional();
+  dissipation_trial_ = dissipation_n_;
   if (want_pressure) st.node_pressure.assign(mesh_.nodes.size(), 0.0);
   // Rigid plates (node to plane; the plate is flat, so the gap is exact).
   for (std::size_t i = 0; i < mesh_.outer_nodes.size(); ++i) {
@@ -179,6 +189,8 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
     for (int plate = 0; plate < 2; ++plate) {
       const double sign = plate == 0 ? -1.0 : 1.0;  // outward normal of the plate into the ring
       const double gap = plate == 0 ? y_top - x[node].y() : x[node].y() - y_bottom;
+      const std::size_t slot = 2 * i + static_cast<std::size_t>(plate);
+      if (friction) anchor_trial_[slot] = x[node].x();  // re-anchored unless in contact below
       if (gap >= band_) continue;
       ContactContribution c;
       c.count = 1;
@@ -192,6 +204,21 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
         st.max_plate_penetration = std::max(st.max_plate_penetration, -gap);
         ++st.plate_contacts;
         if (want_pressure) st.node_pressure[node] += f / area_outer_[i];
+        if (friction) {
+          // f_n = −k g with ∂g/∂y = sign, so ∂f_n/∂y = −k sign.
+          const PlateFriction fr =
+              plate_friction(x[node].x(), f, -k * sign, kt_outer_[i], in_.friction_coefficient, anchor_n_[slot]);
+          anchor_trial_[slot] = fr.anchor;
+          c.force(0) = -fr.traction;
+          if (want_tangent) {
+            c.tangent(0, 0) = fr.dr_dx;
+            c.tangent(0, 1) = fr.dr_dy;
+          }
+          st.energy += fr.stored_energy;
+          dissipation_trial_ += fr.dissipation;
+          (plate == 0 ? st.top_friction_force : st.bottom_friction_force) += std::abs(fr.traction);
+          if (fr.slipping) ++st.slipping_contacts;
+        }
       }
       if (want_tangent) c.tangent(1, 1) = k;
       out.push_back(c);
@@ -254,6 +281,13 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
       out.push_back(c);
     }
   }
+  st.friction_dissipation = dissipation_trial_;
+}
+
+void RingContact::commit() {
+  if (!frictional()) return;
+  anchor_n_ = anchor_trial_;
+  dissipation_n_ = dissipation_trial_;
 }
 
 }  // namespace ringcrush::fe

@@ -5,6 +5,10 @@
 //    Hermite-smoothed quadratic surface of the other half (two passes by default).
 // Penalty energy ½ k g² for g < 0 with k = penalty_scale · E · L · w / h (fe_input.hpp), so
 // the force is the gradient of a potential and the tangent is symmetric.
+// Optional Coulomb friction at the plates (friction_coefficient > 0, plate_friction.hpp):
+// each outer node keeps a stick point per plate, committed and trial apart like the J2
+// point states (evaluate() writes trial only, commit() promotes it, a rejected increment
+// leaves no trace); the tangent is then not symmetric. The inner wall stays frictionless.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,7 +25,10 @@ struct ContactState {
   double top_force = 0;         // force the driven plate exerts on the model (≥ 0, downward)
   double bottom_force = 0;      // force the fixed plate exerts on the model (≥ 0, upward)
   double self_force = 0;        // Σ |normal force| of inner-wall contact (per pass pair)
-  double energy = 0;            // penalty energy
+  double energy = 0;            // penalty energy (normal, and tangential stick springs)
+  double friction_dissipation = 0;  // plate friction work since the start (trial, model)
+  double top_friction_force = 0, bottom_friction_force = 0;  // Σ |t| per plate
+  int slipping_contacts = 0;
   double max_plate_penetration = 0;
   double max_self_penetration = 0;
   int plate_contacts = 0, self_contacts = 0;
@@ -33,8 +40,17 @@ class RingContact {
   RingContact(const RingMesh& mesh, const ContactInput& input, double youngs_modulus, double width);
 
   // x: current coordinates of all nodes. Appends the active contributions.
+  // Writes the trial friction state (stick points) only.
   void evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, double y_bottom, bool want_tangent,
-                bool want_pressure, std::vector<ContactContribution>& out, ContactState& state) const;
+                bool want_pressure, std::vector<ContactContribution>& out, ContactState& state);
+  // Makes the trial friction state of the last evaluate() the committed one (call it after
+  // evaluating the converged configuration). Out-of-contact nodes are re-anchored where they
+  // are, so a node that touches down starts sticking at its touch-down point.
+  void commit();
+  bool frictional() const { return in_.friction_coefficient > 0; }
+  // Committed stick point (x) of outer node i on the top (plate 0) or bottom (plate 1) plate.
+  double committed_anchor(std::size_t i, int plate) const { return anchor_n_[2 * i + static_cast<std::size_t>(plate)]; }
+  double committed_friction_dissipation() const { return dissipation_n_; }
 
   double penalty_of_outer(std::size_t i) const { return k_outer_[i]; }
 
@@ -51,7 +67,10 @@ class RingContact {
   const RingMesh& mesh_;
   ContactInput in_;
   double width_;
-  std::vector<double> k_outer_, area_outer_;
+  std::vector<double> k_outer_, area_outer_, kt_outer_;
+  // Plate friction history, two slots (top, bottom) per outer node.
+  std::vector<double> anchor_n_, anchor_trial_;
+  double dissipation_n_ = 0, dissipation_trial_ = 0;
   std::vector<Pass> passes_;
   // Plate contacts that just touch (gap below this round-off band, e.g. the two contact
   // points of the unloaded ring) carry stiffness but no force: this keeps the vertical
