@@ -5,10 +5,12 @@
 //    Hermite-smoothed quadratic surface of the other half (two passes by default).
 // Penalty energy ½ k g² for g < 0 with k = penalty_scale · E · L · w / h (fe_input.hpp), so
 // the force is the gradient of a potential and the tangent is symmetric.
-// Optional Coulomb friction at the plates (friction_coefficient > 0, plate_friction.hpp):
-// each outer node keeps a stick point per plate, committed and trial apart like the J2
-// point states (evaluate() writes trial only, commit() promotes it, a rejected increment
-// leaves no trace); the tangent is then not symmetric. The inner wall stays frictionless.
+// Optional Coulomb friction (friction_coefficient > 0), penalty-regularised: at the plates
+// (plate_friction.hpp) each outer node keeps a stick point per plate; on the inner wall each
+// slave keeps a stick point on the smoothed master surface, the slip being measured along
+// that surface (self_contact_friction_force below). Committed and trial stick points are kept
+// apart like the J2 point states (evaluate() writes trial only, commit() promotes it, a
+// rejected increment leaves no trace); the tangent is then not symmetric.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,6 +30,7 @@ struct ContactState {
   double energy = 0;            // penalty energy (normal, and tangential stick springs)
   double friction_dissipation = 0;  // plate friction work since the start (trial, model)
   double top_friction_force = 0, bottom_friction_force = 0;  // Σ |t| per plate
+  double self_friction_force = 0;  // Σ |t| of inner-wall contact
   int slipping_contacts = 0;
   double max_plate_penetration = 0;
   double max_self_penetration = 0;
@@ -60,6 +63,12 @@ class RingContact {
     std::vector<double> slave_k;    // penalty per slave
     std::vector<double> slave_area; // tributary area (w L) per slave
     std::vector<CurvePiece> pieces; // master surface
+    // Friction: tangential penalty per slave and its stick point as a surface coordinate
+    // S = piece_start[q] + (f − lo) · w_q (NaN: not in contact at the last commit), committed
+    // and trial. w_q = 1 on a quadratic part (its parameter is the segment's g) and 2α on a
+    // Hermite junction (x'(±1) = 2α dx/dg), so that dx/dS is continuous along a chain and a
+    // stick point carries over from one piece to the next; chains are 10 apart in S.
+    std::vector<double> slave_kt, anchor_n, anchor_trial, piece_start;
   };
   bool self_pair(const Pass& p, const Eigen::Vector2d& xs, int slave, const CurvePiece& piece,
                  const std::vector<Eigen::Vector2d>& x, double& f, double& gap, double& dist) const;
@@ -83,5 +92,25 @@ class RingContact {
 // assembler through finite differences for the tangent and tested alone).
 bool self_contact_force(const CurvePiece& piece, const double* coords, double k, double max_depth,
                         double* force, double& gap, double& f_hint, bool strict = true);
+
+// Coulomb friction on the smoothed surface, same penalty regularisation and return mapping as
+// at the plates (plate_friction.hpp), added to the normal force of self_contact_force (same
+// arguments; the friction force is added into `force`). The stick point is a parameter
+// `anchor_n` of this piece's polynomial (a little outside [lo, hi] when it lies on a
+// neighbouring piece: the polynomial continues the C¹ surface to second order); NaN when the
+// node was not in contact at the last commit: it then sticks at its current closest point.
+// Elastic slip g_T = (x_s − x(anchor))·τ along the unit tangent τ at the closest point;
+// trial t* = −k_t g_T; slip when |t*| > μ f_n, the stick point then moves along the surface to
+// f + t/(k_t |x'(f)|). The slave receives t τ, the piece nodes −c_a(f) t τ.
+struct SurfaceFriction {
+  double traction = 0;       // along τ, on the slave
+  double anchor = 0;         // trial stick point (piece parameter)
+  bool slipping = false;
+  double stored_energy = 0;  // ½ t² / k_t
+  double dissipation = 0;    // μ f_n |t* − t| / k_t
+};
+bool self_contact_friction_force(const CurvePiece& piece, const double* coords, double k, double kt, double mu,
+                                 double anchor_n, double max_depth, double* force, double& gap, double& f_hint,
+                                 SurfaceFriction& friction, bool strict = true);
 
 }  // namespace ringcrush::fe

@@ -1,4 +1,4 @@
-// The thesis static crush with Coulomb friction at the plates (issue 3 item 4): μ = 0 is the
+// The thesis static crush with Coulomb friction (issue 3 item 4): μ = 0 is the
 // frictionless path bit for bit, a vanishing μ converges to it, and μ = 0.2 raises the load
 // (friction at the plates restrains the spreading of the flattened contact zones) while the
 // energy balance, now with the friction work, and the plate equilibrium still close. Thesis
@@ -98,7 +98,7 @@ TEST(FrictionCrush, FrictionRaisesTheLoadByLessThanMu) {
 TEST(FrictionCrush, SceneCarriesFrictionAndRefusesBadValues) {
   auto s = thesis_scene();
   s.fe.friction_coefficient = 0.3;
-  s.fe.friction_penalty_scale = 2.0;
+  s.fe.friction_penalty_scale = 2.0;  // not the default 0.1
   const fe::FeInput in = compare::fe_static_input(s);
   EXPECT_EQ(in.contact.friction_coefficient, 0.3);
   EXPECT_EQ(in.contact.tangential_penalty_scale, 2.0);
@@ -107,4 +107,29 @@ TEST(FrictionCrush, SceneCarriesFrictionAndRefusesBadValues) {
   s.fe.friction_coefficient = 0.3;
   s.fe.friction_penalty_scale = 0.0;
   EXPECT_THROW(compare::fe_static_input(s), std::invalid_argument);
+}
+
+// Lock-up with friction (μ = 0.2 at the plates and on the inner wall): crushed until the plate
+// gap is 2t + 0.2 mm, the inner wall carries load and slips on itself (slipping contacts
+// beyond the plate ones), the run closes its energy balance with the friction work within 1 %
+// and the plates stay in equilibrium.
+TEST(FrictionCrush, LockUpWithFrictionOnTheInnerWall) {
+  const auto scene = thesis_scene();
+  fe::FeInput in = thesis_input(0.6);
+  const double t = scene.rings.wall_thickness_m;
+  in.solver.crush_m = scene.rings.outer_diameter_m - (2 * t + 0.2e-3);
+  in.contact.friction_coefficient = 0.2;
+  const auto r = fe::run_static(in);
+  const auto& last = r.history.back();
+  EXPECT_NEAR(last.deflection_m, in.solver.crush_m, 1e-12);
+  EXPECT_GT(last.self_contacts, 0);
+  EXPECT_GT(last.self_contact_force_n, 0.05 * last.force_n);
+  int most_slipping = 0;
+  for (const auto& h : r.history) most_slipping = std::max(most_slipping, h.slipping_contacts);
+  EXPECT_GT(most_slipping, 0);
+  EXPECT_GT(last.friction_j, 0.0);
+  EXPECT_LT(std::abs(last.external_work_j - last.elastic_j - last.plastic_j - last.contact_j - last.friction_j) /
+                last.external_work_j,
+            0.01);
+  EXPECT_LT(r.max_equilibrium_error, 1e-3);
 }
