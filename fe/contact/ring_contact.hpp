@@ -1,4 +1,4 @@
-// Contact of one ring (DESIGN.md "Contact", thesis §3.6.2–3.6.3), frictionless penalty:
+// Contact of one ring (DESIGN.md "Contact", thesis §3.6.2–3.6.3), penalty (friction below):
 //  - rigid plates: the outer-surface nodes against the planes y = y_bottom (fixed target)
 //    and y = y_top (driven); gap g = (y − y_bottom) or (y_top − y);
 //  - the inner wall against itself (lock-up): nodes of one inner half against the
