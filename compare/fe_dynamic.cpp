@@ -44,7 +44,8 @@ void require_dynamic_fe_scene(const Scene& s) {
         "fe dynamic: CPS8 is a plane-stress element; set rings.section = \"plane_stress\"");
   if (s.fe.friction_coefficient != 0.0)
     throw std::invalid_argument(fmt::format(
-        "fe dynamic: fe.friction_coefficient = {} but Coulomb friction is not implemented in the FE; use 0",
+        "fe dynamic: fe.friction_coefficient = {} but Coulomb friction is built for the static FE only "
+        "(plates, fe/contact/plate_friction.hpp), not for the chain dynamics; use 0",
         s.fe.friction_coefficient));
   if (!s.impactor)
     throw std::invalid_argument("fe dynamic: the scene has no [impactor]");

@@ -14,7 +14,7 @@
 namespace ringcrush::compare {
 
 // Throws std::invalid_argument for scenes the FE static model does not cover (more than
-// one ring, plane strain, friction).
+// one ring, plane strain). Coulomb friction acts at the plates only.
 fe::FeInput fe_static_input(const Scene& scene);
 
 RunResult fe_static_run_result(const Scene& scene, const fe::StaticResult& r);

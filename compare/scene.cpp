@@ -357,6 +357,8 @@ Scene parse_scene(const std::string& text, const std::string& file) {
     f.friction_coefficient = r.number("friction_coefficient", f.friction_coefficient);
     require(f.friction_coefficient >= 0 && f.friction_coefficient <= 2, r,
             "friction_coefficient", "must lie in [0, 2]");
+    f.friction_penalty_scale = r.number("friction_penalty_scale", f.friction_penalty_scale);
+    require(f.friction_penalty_scale > 0, r, "friction_penalty_scale", "must be positive");
     f.explicit_safety = r.number("explicit_safety", f.explicit_safety);
     require(f.explicit_safety > 0 && f.explicit_safety <= 1, r, "explicit_safety",
             "must lie in (0, 1]");

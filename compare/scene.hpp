@@ -97,6 +97,7 @@ struct FeSettings {
   double contact_smoothing = 0.25;   // Hermite junction smoothing of slide lines (thesis SMOOTH)
   double contact_penalty_scale = 1.0;
   double friction_coefficient = 0.0;
+  double friction_penalty_scale = 0.1;  // tangential (stick) penalty, scaled as the normal one
   double explicit_safety = 0.8;
   double energy_error_limit = 0.05;  // stop when |balance error| / KE0 exceeds this
 };

@@ -1,5 +1,6 @@
 #include "fe/fe_input.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,12 @@ void validate(const FeInput& in) {
   need(in.mesh.grading >= 1, "grading must be >= 1");
   need(in.contact.penalty_scale > 0, "contact penalty scale must be positive");
   need(in.contact.smoothing >= 0 && in.contact.smoothing < 0.5, "contact smoothing must lie in [0, 0.5)");
+  if (!(in.contact.friction_coefficient >= 0) || !std::isfinite(in.contact.friction_coefficient))
+    throw std::invalid_argument("fe input: friction coefficient " + std::to_string(in.contact.friction_coefficient) +
+                                " must be finite and >= 0");
+  if (!(in.contact.tangential_penalty_scale > 0) || !std::isfinite(in.contact.tangential_penalty_scale))
+    throw std::invalid_argument("fe input: tangential penalty scale " +
+                                std::to_string(in.contact.tangential_penalty_scale) + " must be finite and > 0");
   const auto& s = in.solver;
   need(s.crush_m > 0 && s.crush_m < 2 * in.ring.outer_radius_m, "crush must lie in (0, D)");
   need(s.min_increment > 0 && s.min_increment <= s.initial_increment && s.initial_increment <= 1,

@@ -59,6 +59,19 @@ struct ContactInput {
   // Inner-wall points closer than this (reference arc angle) are joined by the wall itself
   // and never paired.
   double self_contact_min_separation_rad = std::numbers::pi / 3.0;
+  // Coulomb friction, penalty-regularised, at the rigid plates (fe/contact/plate_friction.hpp)
+  // and on the inner wall against itself (slip along the smoothed surface, ring_contact.hpp);
+  // scene key `friction_coefficient`. 0 = frictionless, the thesis: the friction code is then
+  // skipped entirely and the tangent stays symmetric (LDLᵀ); otherwise LU.
+  double friction_coefficient = 0.0;
+  // Tangential (stick) penalty of a contact node = tangential_penalty_scale · E · L · w / h,
+  // scaled exactly as the normal penalty (scene key `friction_penalty_scale`): the elastic
+  // slip before sliding is μ f_n / k_t = μ · (normal penetration) · penalty_scale /
+  // tangential_penalty_scale, about 2 µm at 0.1 and μ = 0.2 on the thesis crush, far below an
+  // increment's travel. Measured on the thesis crush (μ = 0.3): 0.01 … 0.3 give the same load
+  // to 0.1 %; at 0.3 and above Newton chatters between stick and slip at the edge of the
+  // contact zones and runs fail with μ = 0.1–0.3, hence 0.1.
+  double tangential_penalty_scale = 0.1;
 };
 
 struct StaticSolverInput {

@@ -46,6 +46,7 @@ void RingModel::build_geometry() {
 
 void RingModel::commit(const Eigen::VectorXd& u) {
   committed_ = trial_;
+  contact_.commit();
   u_n_ = u;
   build_geometry();
 }

@@ -47,6 +47,9 @@ class RingModel {
   // element is inverted there.
   void commit(const Eigen::VectorXd& u);
   const Eigen::VectorXd& committed_displacement() const { return u_n_; }
+  // Plate friction on (friction_coefficient > 0): the tangent is then not symmetric.
+  bool frictional() const { return contact_.frictional(); }
+  const RingContact& contact() const { return contact_; }
 
   // Point-averaged Mises (Cauchy) and PEEQ per element, committed states.
   std::vector<Cps8Fields> element_fields() const;

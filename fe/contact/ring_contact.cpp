@@ -1,7 +1,10 @@
 #include "fe/contact/ring_contact.hpp"
 
+#include "fe/contact/plate_friction.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace ringcrush::fe {
@@ -87,13 +90,67 @@ bool self_contact_force(const CurvePiece& p, const double* xy, double k, double 
   return true;
 }
 
+bool self_contact_friction_force(const CurvePiece& p, const double* xy, double k, double kt, double mu,
+                                 double anchor_n, double max_depth, double* force, double& gap, double& f,
+                                 SurfaceFriction& fr, bool strict) {
+  fr = SurfaceFriction{};
+  if (!self_contact_force(p, xy, k, max_depth, force, gap, f, strict)) return false;
+  double c[5], dc[5], ddc[5];
+  p.coefficients(f, c, dc, ddc);
+  double tx = 0, ty = 0;
+  for (int a = 0; a < p.count; ++a) {
+    tx += dc[a] * xy[2 + 2 * a];
+    ty += dc[a] * xy[3 + 2 * a];
+  }
+  const double tl = std::hypot(tx, ty);
+  const double ux = tx / tl, uy = ty / tl;
+  const double fn = -k * gap;
+  fr.anchor = f;
+  if (std::isnan(anchor_n)) return true;  // touch-down: stick here, no force yet
+  // The stick point's current position on the (continued) piece.
+  double ca[5], dca[5], ddca[5];
+  p.coefficients(anchor_n, ca, dca, ddca);
+  double ax = 0, ay = 0;
+  for (int a = 0; a < p.count; ++a) {
+    ax += ca[a] * xy[2 + 2 * a];
+    ay += ca[a] * xy[3 + 2 * a];
+  }
+  const double slip = (xy[0] - ax) * ux + (xy[1] - ay) * uy;
+  const double trial = -kt * slip;
+  const double limit = mu * fn;
+  double t = trial;
+  fr.anchor = anchor_n;
+  if (std::abs(trial) > limit) {
+    t = trial > 0 ? limit : -limit;
+    fr.slipping = true;
+    fr.anchor = f + t / (kt * tl);
+    fr.dissipation = limit * std::abs(trial - t) / kt;
+  }
+  fr.traction = t;
+  fr.stored_energy = 0.5 * t * t / kt;
+  // Residual = −(force on the node): the slave gets t τ, the piece nodes −c_a t τ.
+  force[0] -= t * ux;
+  force[1] -= t * uy;
+  for (int a = 0; a < p.count; ++a) {
+    force[2 + 2 * a] += c[a] * t * ux;
+    force[3 + 2 * a] += c[a] * t * uy;
+  }
+  return true;
+}
+
 RingContact::RingContact(const RingMesh& mesh, const ContactInput& input, double e, double width)
     : mesh_(mesh), in_(input), width_(width), band_(1e-9 * mesh.element_depth) {
   const double kscale = input.penalty_scale * e * width / mesh.element_depth;
+  const double ktscale = input.tangential_penalty_scale * e * width / mesh.element_depth;
   for (double w : mesh.outer_weight) {
     k_outer_.push_back(kscale * w);
+    kt_outer_.push_back(ktscale * w);
     area_outer_.push_back(w * width);
   }
+  // Every node starts anchored at its reference position on both plates.
+  for (int node : mesh.outer_nodes)
+    for (int plate = 0; plate < 2; ++plate) anchor_n_.push_back(mesh.nodes[node].x());
+  anchor_trial_ = anchor_n_;
   if (!input.self_contact) return;
   const double pi = std::numbers::pi;
   // Lower (y < 0) and upper (y > 0) halves of the inner wall in the reference configuration.
@@ -128,16 +185,25 @@ RingContact::RingContact(const RingMesh& mesh, const ContactInput& input, double
       if (!slave_pred(mesh.node_angle[node])) continue;
       p.slaves.push_back(node);
       p.slave_k.push_back(kscale * mesh.inner_weight[i]);
+      p.slave_kt.push_back(ktscale * mesh.inner_weight[i]);
+      p.anchor_n.push_back(std::numeric_limits<double>::quiet_NaN());
       p.slave_area.push_back(mesh.inner_weight[i] * width);
     }
+    double start = 0;
     for (const auto& ch : chains(master_pred)) {
       auto pieces = smoothed_chain(ch, input.smoothing);
+      for (const CurvePiece& q : pieces) {
+        p.piece_start.push_back(start);
+        start += (q.hi - q.lo) * surface_speed(q);
+      }
+      start += 10;
       p.pieces.insert(p.pieces.end(), pieces.begin(), pieces.end());
     }
     return p;
   };
   passes_.push_back(make_pass(lower, upper));
   if (input.self_contact_two_pass) passes_.push_back(make_pass(upper, lower));
+  for (Pass& p : passes_) p.anchor_trial = p.anchor_n;
   (void)pi;
 }
 
@@ -169,8 +235,10 @@ bool RingContact::self_pair(const Pass&, const Eigen::Vector2d& xs, int slave, c
 }
 
 void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, double y_bottom, bool want_tangent,
-                           bool want_pressure, std::vector<ContactContribution>& out, ContactState& st) const {
+                           bool want_pressure, std::vector<ContactContribution>& out, ContactState& st) {
   st = ContactState{};
+  const bool friction = frictional();
+  dissipation_trial_ = dissipation_n_;
   if (want_pressure) st.node_pressure.assign(mesh_.nodes.size(), 0.0);
   // Rigid plates (node to plane; the plate is flat, so the gap is exact).
   for (std::size_t i = 0; i < mesh_.outer_nodes.size(); ++i) {
@@ -179,6 +247,8 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
     for (int plate = 0; plate < 2; ++plate) {
       const double sign = plate == 0 ? -1.0 : 1.0;  // outward normal of the plate into the ring
       const double gap = plate == 0 ? y_top - x[node].y() : x[node].y() - y_bottom;
+      const std::size_t slot = 2 * i + static_cast<std::size_t>(plate);
+      if (friction) anchor_trial_[slot] = x[node].x();  // re-anchored unless in contact below
       if (gap >= band_) continue;
       ContactContribution c;
       c.count = 1;
@@ -192,14 +262,30 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
         st.max_plate_penetration = std::max(st.max_plate_penetration, -gap);
         ++st.plate_contacts;
         if (want_pressure) st.node_pressure[node] += f / area_outer_[i];
+        if (friction) {
+          // f_n = −k g with ∂g/∂y = sign, so ∂f_n/∂y = −k sign.
+          const PlateFriction fr =
+              plate_friction(x[node].x(), f, -k * sign, kt_outer_[i], in_.friction_coefficient, anchor_n_[slot]);
+          anchor_trial_[slot] = fr.anchor;
+          c.force(0) = -fr.traction;
+          if (want_tangent) {
+            c.tangent(0, 0) = fr.dr_dx;
+            c.tangent(0, 1) = fr.dr_dy;
+          }
+          st.energy += fr.stored_energy;
+          dissipation_trial_ += fr.dissipation;
+          (plate == 0 ? st.top_friction_force : st.bottom_friction_force) += std::abs(fr.traction);
+          if (fr.slipping) ++st.slipping_contacts;
+        }
       }
       if (want_tangent) c.tangent(1, 1) = k;
       out.push_back(c);
     }
   }
   // Inner wall against itself.
-  for (const Pass& p : passes_) {
+  for (Pass& p : passes_) {
     for (std::size_t s = 0; s < p.slaves.size(); ++s) {
+      if (friction) p.anchor_trial[s] = std::numeric_limits<double>::quiet_NaN();  // unless in contact below
       const int node = p.slaves[s];
       const Eigen::Vector2d& xs = x[node];
       int best = -1;
@@ -225,35 +311,70 @@ void RingContact::evaluate(const std::vector<Eigen::Vector2d>& x, double y_top, 
       }
       const int n = 2 * c.count;
       double f = best_f, g;
-      self_contact_force(piece, xy, k, mesh_.element_depth, c.force.data(), g, f, true);
+      // Friction: the committed stick point as a parameter of this piece (from the surface
+      // coordinate S, continued linearly past the piece's ends).
+      const double kt = p.slave_kt[s];
+      const double lo = piece.lo, w = surface_speed(piece), s0 = p.piece_start[static_cast<std::size_t>(best)];
+      const double anchor_n = std::isnan(p.anchor_n[s]) ? p.anchor_n[s] : lo + (p.anchor_n[s] - s0) / w;
+      SurfaceFriction fr;
+      if (friction) {
+        self_contact_friction_force(piece, xy, k, kt, in_.friction_coefficient, anchor_n, mesh_.element_depth,
+                                    c.force.data(), g, f, fr, true);
+        p.anchor_trial[s] = s0 + (fr.anchor - lo) * w;
+      } else {
+        self_contact_force(piece, xy, k, mesh_.element_depth, c.force.data(), g, f, true);
+      }
       if (want_tangent) {
-        // Tangent by central differences of the exact local force (a 12×12 block at most);
-        // symmetrised, since the force is the gradient of the penalty energy.
+        // Tangent by central differences of the exact local force (a 12×12 block at most,
+        // the committed stick point held fixed).
         const double h = 1e-7 * mesh_.element_depth;
         double fp[12], fm[12];
         for (int j = 0; j < n; ++j) {
           const double keep = xy[j];
           double gg, ff = best_f;
+          SurfaceFriction unused;
+          auto local = [&](double* result) {
+            if (friction)
+              self_contact_friction_force(piece, xy, k, kt, in_.friction_coefficient, anchor_n,
+                                          10 * mesh_.element_depth, result, gg, ff, unused, false);
+            else
+              self_contact_force(piece, xy, k, 10 * mesh_.element_depth, result, gg, ff, false);
+          };
           xy[j] = keep + h;
-          self_contact_force(piece, xy, k, 10 * mesh_.element_depth, fp, gg, ff, false);
+          local(fp);
           ff = best_f;
           xy[j] = keep - h;
-          self_contact_force(piece, xy, k, 10 * mesh_.element_depth, fm, gg, ff, false);
+          local(fm);
           xy[j] = keep;
           for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * h);
         }
-        const Eigen::Matrix<double, 12, 12> t = c.tangent;
-        c.tangent = 0.5 * (t + t.transpose());
+        // Frictionless, the force is the gradient of the penalty energy: symmetrise away the
+        // differencing noise. With friction the tangent is genuinely non-symmetric.
+        if (!friction) {
+          const Eigen::Matrix<double, 12, 12> t = c.tangent;
+          c.tangent = 0.5 * (t + t.transpose());
+        }
       }
       const double fn = -k * gap;
       st.self_force += fn;
-      st.energy += 0.5 * k * gap * gap;
+      st.energy += 0.5 * k * gap * gap + fr.stored_energy;
+      dissipation_trial_ += fr.dissipation;
+      st.self_friction_force += std::abs(fr.traction);
+      if (fr.slipping) ++st.slipping_contacts;
       st.max_self_penetration = std::max(st.max_self_penetration, -gap);
       ++st.self_contacts;
       if (want_pressure) st.node_pressure[node] += fn / p.slave_area[s];
       out.push_back(c);
     }
   }
+  st.friction_dissipation = dissipation_trial_;
+}
+
+void RingContact::commit() {
+  if (!frictional()) return;
+  anchor_n_ = anchor_trial_;
+  for (Pass& p : passes_) p.anchor_n = p.anchor_trial;
+  dissipation_n_ = dissipation_trial_;
 }
 
 }  // namespace ringcrush::fe

@@ -28,6 +28,11 @@ struct CurvePiece {
   void coefficients(double f, double* c, double* dc, double* ddc) const;
 };
 
+// Parameter speed of a piece relative to the segment parameter g: 1 on a quadratic part,
+// 2α on a Hermite junction (x'(±1) = 2α dx/dg); Σ (hi − lo) · speed is then a surface
+// coordinate with a continuous dx/dS along a chain (the friction stick points use it).
+inline double surface_speed(const CurvePiece& p) { return p.count == 5 ? 2 * p.alpha : 1.0; }
+
 // Pieces of one counter-clockwise chain of consecutive segments (shared end nodes).
 std::vector<CurvePiece> smoothed_chain(const std::vector<SurfaceSegment>& chain, double alpha);
 

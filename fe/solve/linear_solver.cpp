@@ -4,13 +4,18 @@ namespace ringcrush::fe {
 
 bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k, long pattern_version) {
   if (pattern_version != version_) {
-    ldlt_.analyzePattern(k);
+    if (symmetric_) ldlt_.analyzePattern(k);
+    else lu_.analyzePattern(k);
     version_ = pattern_version;
     ++analyses_;
   }
-  ldlt_.factorize(k);
   ++factorizations_;
-  return ldlt_.info() == Eigen::Success;
+  if (symmetric_) {
+    ldlt_.factorize(k);
+    return ldlt_.info() == Eigen::Success;
+  }
+  lu_.factorize(k);
+  return lu_.info() == Eigen::Success;
 }
 
 }  // namespace ringcrush::fe

@@ -25,7 +25,9 @@ struct NewtonOutcome {
 
 class StaticSolver {
  public:
-  StaticSolver(const FeInput& in, const StaticCallbacks& cb) : in_(in), cb_(cb), model_(in) {}
+  // Friction makes the tangent non-symmetric: LU instead of LDLᵀ (linear_solver.hpp).
+  StaticSolver(const FeInput& in, const StaticCallbacks& cb)
+      : in_(in), cb_(cb), model_(in), solver_(!model_.frictional()) {}
 
   StaticResult run();
 
@@ -177,6 +179,9 @@ void StaticSolver::record(double lambda, double dlambda, const NewtonOutcome& o,
   h.elastic_j = f * ev.elastic_energy;
   h.plastic_j = f * ev.plastic_work;
   h.contact_j = f * ev.contact.energy;
+  h.friction_j = f * ev.contact.friction_dissipation;
+  h.friction_force_n = f * ev.contact.top_friction_force;
+  h.slipping_contacts = ev.contact.slipping_contacts;
   h.external_work_j = f * work_;
   h.increment = dlambda;
   h.iterations = o.iterations;

@@ -37,6 +37,10 @@ struct StaticIncrement {
   double fixed_force_n = 0;    // force of the fixed plate on the ring
   double self_contact_force_n = 0;
   double elastic_j = 0, plastic_j = 0, contact_j = 0, external_work_j = 0;
+  // Plate friction: work dissipated since the start (W_ext = elastic + plastic + contact +
+  // friction), Σ |tangential force| on the driven plate, slipping plate contacts (model).
+  double friction_j = 0, friction_force_n = 0;
+  int slipping_contacts = 0;
   double increment = 0;        // Δ (fraction of the travel)
   int iterations = 0;
   double residual_n = 0;       // largest residual at convergence (model)
