@@ -201,7 +201,7 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
     top_height.push_back(hh.top);
     bottom_height.push_back(hh.bottom);
     const double c = crush_ratio(shapes[i], d_outer);
-    const RingShape* lower = i + 1 < shapes.size() ? &shapes[i + 1] : nullptr;
+    const RingShape* lower = i + 1 < shapes.size() && s.joints.type != JointType::Plates ? &shapes[i + 1] : nullptr;
     const WrapMeasure w = measure_wrap(shapes[i], lower, mean_radius, t);
     out.crush_ratio.push_back(c);
     out.wrap_around.push_back(w.wrap_around);

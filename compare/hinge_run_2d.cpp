@@ -197,7 +197,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     // Decided on S (compare/measures wrap_flag); in free chains the wrapped arc of ring i
     // bridges over the apex of ring i+1 (Test 30: a 4.5 mm gap on the axis, contact at
     // 37–45°), where W, contiguous from the apex, reads 0.
-    w.wrap_around = wrap_flag(w.inverted_arc_m, R, thresholds);
+    w.wrap_around = below && wrap_flag(w.inverted_arc_m, R, thresholds);  // measures.hpp measure_wrap
     const double c = crush_ratio(final_shapes[ring], D);
     r.crush_ratio.push_back(c);
     r.wrap_around.push_back(w.wrap_around);

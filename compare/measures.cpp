@@ -114,7 +114,8 @@ WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double m
                          double wall_thickness, const WrapThresholds& th) {
   WrapMeasure m;
   m.inverted_arc_m = inverted_arc_length(ring);
-  if (lower) m.wrapped_angle_deg = wrapped_angle_deg(ring, *lower, 1.1 * wall_thickness);
+  if (!lower) return m;  // nothing to wrap around (measures.hpp)
+  m.wrapped_angle_deg = wrapped_angle_deg(ring, *lower, 1.1 * wall_thickness);
   m.wrap_around = wrap_flag(m.inverted_arc_m, mean_radius, th);
   return m;
 }

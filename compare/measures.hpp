@@ -60,8 +60,11 @@ struct WrapMeasure {
   bool wrap_around = false;
 };
 
-// Wrap-around of ring i over ring i+1 (lower == nullptr for the last ring: W = 0), with the
-// flag from wrap_flag().
+// Wrap-around of ring i over ring i+1, with the flag from wrap_flag(). lower == nullptr when
+// ring i has no ring below it to wrap around — the last ring (on the target) or any ring of a
+// plated chain: W = 0 and no flag, whatever S is (a ring flattened beyond c ≈ 0.84 against a
+// plate has inverted kinks of S ≈ 20–24 mm, above the threshold, in the FE Test 31 plated run;
+// the inverted arc measures a wrap only when there is a ring to wrap over).
 WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
                          double wall_thickness, const WrapThresholds& thresholds = {});
 

@@ -114,6 +114,11 @@ TEST(Measures, WrappedRingIsFlagged) {
   EXPECT_TRUE(wrap_flag(0.26 * pi * R, R));
   // Ring 2 itself is intact: no inversion, no wrap over anything.
   EXPECT_FALSE(measure_wrap(ring2, nullptr, R, t).wrap_around);
+  // Ring 1's inverted arc with no ring below it (a plate or the target under it): no wrap.
+  const auto alone = measure_wrap(ring1, nullptr, R, t);
+  EXPECT_FALSE(alone.wrap_around);
+  EXPECT_GT(alone.inverted_arc_m, 0.25 * pi * R);
+  EXPECT_EQ(alone.wrapped_angle_deg, 0.0);
 }
 
 // THEORY §4.7: two flattened rings lying flat on each other give a large W but no inverted
