@@ -22,6 +22,7 @@
 #include "compare/fe_static.hpp"
 #include "compare/scene.hpp"
 #include "fe/mesh/ring_mesh.hpp"
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -30,33 +31,19 @@ namespace {
 // The ringcrush executable (the helper's name would clash with namespace ringcrush here).
 cli_testing::CommandRun run_cli(const std::string& args) { return cli_testing::ringcrush(args); }
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_calculix_test_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_calculix_test_", name); }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test_files::read_text;
 
 // The thesis static scene (22 CPS8 per half ring, the thesis's own coarse mesh) crushed to
 // δ/d = 0.32, no fields or plots; `more` replaces further text (regex → value).
-fs::path coarse_scene(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& more = {}) {
-  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_static.toml");
-  std::vector<std::pair<std::string, std::string>> repl{{"crush_m = 0\\.046", "crush_m = 0.01575"},
-                                                        {"fields = true", "fields = false"},
-                                                        {"plots = true", "plots = false"},
-                                                        {"initial_increment = 0\\.001", "initial_increment = 0.01"}};
-  repl.insert(repl.end(), more.begin(), more.end());
-  for (const auto& [pattern, value] : repl) text = std::regex_replace(text, std::regex(pattern), value);
-  const fs::path p = dir / "thesis_coarse.toml";
-  std::ofstream(p) << text;
-  return p;
+fs::path coarse_scene(const fs::path& dir, const test_files::Edits& more = {}) {
+  test_files::Edits edits{{"crush_m = 0\\.046", "crush_m = 0.01575"},
+                          {"fields = true", "fields = false"},
+                          {"plots = true", "plots = false"},
+                          {"initial_increment = 0\\.001", "initial_increment = 0.01"}};
+  edits.insert(edits.end(), more.begin(), more.end());
+  return test_files::edited_scene("data/scenes/thesis_static.toml", dir / "thesis_coarse.toml", edits);
 }
 
 // The data lines under each keyword line of a deck, keyed by the keyword line (upper case,

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -20,12 +21,7 @@ using cli_testing::ringcrush;
 
 const std::string scenes = std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/";
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_cli_test_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_cli_test_", name); }
 
 bool empty_dir(const fs::path& p) { return fs::is_empty(p); }
 }  // namespace

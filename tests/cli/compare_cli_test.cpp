@@ -15,6 +15,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -25,12 +26,7 @@ CommandRun ringcrush(const std::string& args, const fs::path& cache) {
   return cli_testing::ringcrush(args, "RINGCRUSH_CACHE_DIR='" + cache.string() + "'");
 }
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_compare_cli_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_compare_cli_", name); }
 
 std::string read(const fs::path& f) {
   std::ifstream in(f);

@@ -16,6 +16,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -23,33 +24,19 @@ namespace {
 using cli_testing::CommandRun;
 using cli_testing::ringcrush;
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_fe_dynamic_cli_test_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_fe_dynamic_cli_test_", name); }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test_files::read_text;
 
 // The thesis dynamic chain, cheap: 3 rings, 12 elements per half ring, 0.4 ms, 3 frames.
-fs::path cheap_scene(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& more = {}) {
-  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_dynamic.toml");
-  std::vector<std::pair<std::string, std::string>> repl{{"count = 6", "count = 3"},
-                                                        {"elements_around = 48", "elements_around = 12"},
-                                                        {"end_time_s = 0\\.05", "end_time_s = 0.0004"},
-                                                        {"frames = 20", "frames = 3"},
-                                                        {"solver = \"hht\"", "solver = \"explicit\""}};
-  repl.insert(repl.end(), more.begin(), more.end());
-  for (const auto& [pattern, value] : repl) text = std::regex_replace(text, std::regex(pattern), value);
-  const fs::path p = dir / "scene.toml";
-  std::ofstream(p) << text;
-  return p;
+fs::path cheap_scene(const fs::path& dir, const test_files::Edits& more = {}) {
+  test_files::Edits edits{{"count = 6", "count = 3"},
+                          {"elements_around = 48", "elements_around = 12"},
+                          {"end_time_s = 0\\.05", "end_time_s = 0.0004"},
+                          {"frames = 20", "frames = 3"},
+                          {"solver = \"hht\"", "solver = \"explicit\""}};
+  edits.insert(edits.end(), more.begin(), more.end());
+  return test_files::edited_scene("data/scenes/thesis_dynamic.toml", dir / "scene.toml", edits);
 }
 
 std::size_t data_rows(const fs::path& csv) {

@@ -10,18 +10,14 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 const std::string exe = RINGCRUSH_EXE;
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_sweep_cli_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_sweep_cli_", name); }
 
 int run(const std::string& args) {
   const int raw = std::system((exe + " " + args + " > /dev/null 2>&1").c_str());

@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -21,12 +22,7 @@ namespace {
 using cli_testing::CommandRun;
 using cli_testing::ringcrush;
 
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("ringcrush_fe_cli_test_" + name);
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p;
-}
+fs::path scratch(const std::string& name) { return test_files::scratch_dir("ringcrush_fe_cli_test_", name); }
 
 // The thesis scene with some keys replaced (crush, output frames...).
 fs::path scene_variant(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& repl) {

@@ -1,0 +1,43 @@
+// Files for the end-to-end tests: a fresh scratch directory per test, whole-file reads, and
+// a shipped scene with some of its lines edited (the tests run cheap variants of the real
+// scenes rather than copies that could drift from them).
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace test_files {
+
+namespace fs = std::filesystem;
+
+// An empty directory <tmp>/<prefix><name>, removed first if a previous run left it.
+inline fs::path scratch_dir(const std::string& prefix, const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / (prefix + name);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+inline std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// `source` (relative to the source tree) with each (regex, replacement) applied in order,
+// written to `out`.
+using Edits = std::vector<std::pair<std::string, std::string>>;
+inline fs::path edited_scene(const std::string& source, const fs::path& out, const Edits& edits) {
+  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / source);
+  for (const auto& [pattern, value] : edits) text = std::regex_replace(text, std::regex(pattern), value);
+  std::ofstream(out) << text;
+  return out;
+}
+
+}  // namespace test_files
