@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "fe/assembly/ring_model.hpp"
 #include "fe/solve/linear_solver.hpp"
@@ -302,6 +303,17 @@ StaticResult run_static(const FeInput& input, const StaticCallbacks& callbacks) 
   validate(input);
   StaticSolver solver(input, callbacks);
   return solver.run();
+}
+
+double load_at(const StaticResult& r, double delta) {
+  const auto& h = r.history;
+  if (h.empty()) throw std::invalid_argument("load_at: the run has no increments");
+  for (std::size_t i = 1; i < h.size(); ++i)
+    if (h[i].deflection_m >= delta) {
+      const double t = (delta - h[i - 1].deflection_m) / (h[i].deflection_m - h[i - 1].deflection_m);
+      return h[i - 1].force_n + t * (h[i].force_n - h[i - 1].force_n);
+    }
+  return h.back().force_n;
 }
 
 }  // namespace ringcrush::fe

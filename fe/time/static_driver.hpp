@@ -72,6 +72,11 @@ struct StaticResult {
   double max_equilibrium_error = 0;      // max |F_driven − F_fixed| / F_driven over increments
 };
 
+// Plate force (whole ring) at deflection `delta`, linear between the converged increments
+// that bracket it; the last force beyond the end of the run. The load-curve comparisons
+// (mesh convergence, friction, benchmarks) all read the curve through this.
+double load_at(const StaticResult& r, double delta);
+
 struct StaticProgress {
   double fraction = 0, deflection_m = 0, force_n = 0, increment = 0;
   long step = 0;

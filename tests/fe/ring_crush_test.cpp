@@ -25,15 +25,7 @@ fe::FeInput thesis_input() {
   return in;
 }
 
-double load_at(const fe::StaticResult& r, double delta) {
-  const auto& h = r.history;
-  for (std::size_t i = 1; i < h.size(); ++i)
-    if (h[i].deflection_m >= delta) {
-      const double t = (delta - h[i - 1].deflection_m) / (h[i].deflection_m - h[i - 1].deflection_m);
-      return h[i - 1].force_n + t * (h[i].force_n - h[i - 1].force_n);
-    }
-  return h.back().force_n;
-}
+using fe::load_at;
 
 struct Reference {
   double d, p0, m0;
