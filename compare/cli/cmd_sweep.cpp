@@ -107,7 +107,9 @@ void run(const SweepCommand& o) {
 }
 
 // The alternation index and ring 1's crush against the first axis, one line per value of
-// the other axes, when the first axis is numeric.
+// the other axes, when the first axis is numeric. A `model = "compare"` sweep also plots
+// where the models agree (`agree`, 1 or 0) and each model's alternation index beside the
+// other's.
 void plot_first_axis(const SweepGrid& grid, const std::filesystem::path& csv, const std::filesystem::path& svg) {
   std::ifstream in(csv);
   std::string header;
@@ -120,7 +122,8 @@ void plot_first_axis(const SweepGrid& grid, const std::filesystem::path& csv, co
   }
   const std::size_t naxes = grid.axes.size();
   SvgPlot plot(fmt::format("Sweep over {}", grid.axes.front().key), grid.axes.front().key, "value");
-  for (const char* metric : {"alternation_index", "crush_ratio_1"}) {
+  for (const char* metric : {"alternation_index", "crush_ratio_1", "agree", "agreement.alternation_index.fe",
+                             "agreement.alternation_index.hinge"}) {
     const auto it = std::find(cols.begin(), cols.end(), metric);
     if (it == cols.end()) continue;
     const std::size_t mc = static_cast<std::size_t>(it - cols.begin());
