@@ -90,6 +90,19 @@ bool self_contact_force(const CurvePiece& p, const double* xy, double k, double 
   return true;
 }
 
+namespace {
+// Σ_a w_a x_a over a piece's nodes (xy: slave then piece nodes): a point (w = c) or a
+// tangent (w = dc/dξ) of the piece.
+Eigen::Vector2d piece_combination(const CurvePiece& p, const double* w, const double* xy) {
+  double x = 0, y = 0;
+  for (int a = 0; a < p.count; ++a) {
+    x += w[a] * xy[2 + 2 * a];
+    y += w[a] * xy[3 + 2 * a];
+  }
+  return {x, y};
+}
+}  // namespace
+
 bool self_contact_friction_force(const CurvePiece& p, const double* xy, double k, double kt, double mu,
                                  double anchor_n, double max_depth, double* force, double& gap, double& f,
                                  SurfaceFriction& fr, bool strict) {
@@ -97,11 +110,8 @@ bool self_contact_friction_force(const CurvePiece& p, const double* xy, double k
   if (!self_contact_force(p, xy, k, max_depth, force, gap, f, strict)) return false;
   double c[5], dc[5], ddc[5];
   p.coefficients(f, c, dc, ddc);
-  double tx = 0, ty = 0;
-  for (int a = 0; a < p.count; ++a) {
-    tx += dc[a] * xy[2 + 2 * a];
-    ty += dc[a] * xy[3 + 2 * a];
-  }
+  const Eigen::Vector2d tangent = piece_combination(p, dc, xy);
+  const double tx = tangent.x(), ty = tangent.y();
   const double tl = std::hypot(tx, ty);
   const double ux = tx / tl, uy = ty / tl;
   const double fn = -k * gap;
@@ -110,11 +120,8 @@ bool self_contact_friction_force(const CurvePiece& p, const double* xy, double k
   // The stick point's current position on the (continued) piece.
   double ca[5], dca[5], ddca[5];
   p.coefficients(anchor_n, ca, dca, ddca);
-  double ax = 0, ay = 0;
-  for (int a = 0; a < p.count; ++a) {
-    ax += ca[a] * xy[2 + 2 * a];
-    ay += ca[a] * xy[3 + 2 * a];
-  }
+  const Eigen::Vector2d stick = piece_combination(p, ca, xy);
+  const double ax = stick.x(), ay = stick.y();
   const double slip = (xy[0] - ax) * ux + (xy[1] - ay) * uy;
   const double trial = -kt * slip;
   const double limit = mu * fn;

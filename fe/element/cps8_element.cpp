@@ -158,15 +158,7 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* u, const PointState* c
     // Small fixed-size products: lazy (coefficient-wise) evaluation, no GEMM kernel.
     const Eigen::Matrix<double, 3, 16> cb = (w * up.tangent).lazyProduct(b);
     add_material_upper(b, cb, out.tangent);
-    Mat2 s;
-    s << up.stress(0), up.stress(2), up.stress(2), up.stress(1);
-    if (selective) {
-      // S : Δδ Ē = (S − p I) : ΔδE + p Σ_r M_r tr(ΔδE_r),  p = ½(S11 + S22).
-      const double p = 0.5 * (up.stress(0) + up.stress(1));
-      s(0, 0) -= p;
-      s(1, 1) -= p;
-      for (int r = 0; r < 4; ++r) q_r[r] += w * p * geo.barlow(i, r);
-    }
+    const Mat2 s = point_stress(up.stress, geo, i, w, q_r);  // geometric part: S : Δδ Ē
     add_geometric(d, s, w, geometric);
   }
   if (selective)

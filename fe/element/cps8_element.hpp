@@ -63,6 +63,22 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* du, const PointState* 
 void cps8_force(const Cps8Geometry& geo, const double* du, const PointState* committed, PointState* trial,
                 const J2PlaneStress& material, Cps8Output& out);
 
+// The stress a point contributes through its own ∂N/∂X (both element paths): S itself, or
+// for the selective rule S − p I, p = ½(S11 + S22), with w p M_r added to the weight q_r of
+// reduced point r — S : δĒ = (S − p I) : δE + p Σ_r M_r δ tr ΔE_r (thesis §3.6.1.4).
+inline Eigen::Matrix2d point_stress(const Eigen::Vector3d& stress, const Cps8Geometry& geo, int point, double w,
+                         std::array<double, 4>& q_r) {
+  Eigen::Matrix2d s;
+  s << stress(0), stress(2), stress(2), stress(1);
+  if (geo.rule == Integration::Selective) {
+    const double p = 0.5 * (stress(0) + stress(1));
+    s(0, 0) -= p;
+    s(1, 1) -= p;
+    for (int r = 0; r < 4; ++r) q_r[r] += w * p * geo.barlow(point, r);
+  }
+  return s;
+}
+
 // Point-averaged von Mises (Cauchy) stress and PEEQ of committed states (field output).
 struct Cps8Fields {
   double mises = 0, peeq = 0;

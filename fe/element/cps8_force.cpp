@@ -74,14 +74,7 @@ void cps8_force(const Cps8Geometry& geo, const double* u, const PointState* comm
     }
     const J2Update up = material.update_stress(e, committed[i]);
     const double w = geo.weight[i] * committed[i].thickness_stretch;
-    Mat2 s;
-    s << up.stress(0), up.stress(2), up.stress(2), up.stress(1);
-    if (selective) {
-      const double p = 0.5 * (up.stress(0) + up.stress(1));
-      s(0, 0) -= p;
-      s(1, 1) -= p;
-      for (int r = 0; r < 4; ++r) q_r[r] += w * p * geo.barlow(i, r);
-    }
+    const Mat2 s = point_stress(up.stress, geo, i, w, q_r);
     add_nodal_force(d, f * s, w, out.force);
     out.elastic_energy += w * up.elastic_energy;
     store_trial(f, up, committed[i], w, trial[i]);
