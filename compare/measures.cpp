@@ -71,6 +71,11 @@ double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double 
   bool open_pos = true, open_neg = true;
   for (std::size_t k : order) {
     const double a = angle(k);
+    const bool wanted = (a >= 0 && open_pos) || (a <= 0 && open_neg);
+    if (!wanted) {
+      if (!open_pos && !open_neg) break;  // both sides closed: the rest cannot count
+      continue;
+    }
     const bool near = distance_to_ring(lower.points[k], upper) <= cap_distance;
     if (a >= 0 && open_pos) { if (near) extent_pos = std::max(extent_pos, a); else open_pos = false; }
     if (a <= 0 && open_neg) { if (near) extent_neg = std::max(extent_neg, -a); else open_neg = false; }
