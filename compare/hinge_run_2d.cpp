@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "compare/shape_output.hpp"
+
 namespace ringcrush::compare {
 
 namespace {
@@ -215,6 +217,14 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     r.ring_outline_m.push_back(std::move(outline));
   }
   r.outline_half = false;
+  for (std::size_t i : frame_samples(h.shapes.size(), scene.outputs.fields ? scene.outputs.frames : 0)) {
+    ShapeFrame f;
+    f.time_s = h.time_s[i];
+    f.rings = h.shapes[i].nodes;
+    f.plastic_rotation = h.shapes[i].plastic_rotation;
+    f.body_faces = h.shapes[i].body_faces;
+    r.shape_frames.push_back(std::move(f));
+  }
 
   run.hinge_map = hinge_map(h.shapes.back(), raw.first_yield_time_s);
   nlohmann::json maps = nlohmann::json::array();

@@ -9,6 +9,7 @@
 
 #include "compare/hinge_run_1d.hpp"
 #include "compare/measures.hpp"
+#include "compare/shape_output.hpp"
 
 namespace ringcrush::compare {
 
@@ -40,6 +41,27 @@ RingShape to_ring_shape(const hinge::Level3Shape& s, double wall) {
   return r;
 }
 
+// Half-ring mean lines of the chain in one state, stacked from ring 1's top at top_y: each
+// next ring's top a wall thickness below the previous ring's bottom (mean lines t apart
+// where the rings touch; Level 3 has no plate thickness).
+std::vector<hinge::Level3Shape> chain_shapes(const hinge::Level3Ring& ring, const hinge::WrapMechanism& wrap,
+                                             const std::vector<hinge::Level3RingResult>& states, double top_y) {
+  std::vector<hinge::Level3Shape> shapes;
+  double top = top_y;
+  for (const auto& rr : states) {
+    shapes.push_back(hinge::level3_ring_shape(ring, wrap, rr, top));
+    top = shapes.back().bottom_y - ring.wall_thickness_m;
+  }
+  return shapes;
+}
+
+// The full mean line (mirrored about x = 0), open: the writers close it.
+std::vector<std::array<double, 2>> full_mean_line(const hinge::Level3Shape& s) {
+  std::vector<std::array<double, 2>> p = s.points;
+  for (std::size_t k = s.points.size() - 1; k-- > 1;) p.push_back({-s.points[k][0], s.points[k][1]});
+  return p;
+}
+
 }  // namespace
 
 RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const Level3RunOptions& extra) {
@@ -67,15 +89,28 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
   r.numerical_j.assign(n, 0.0);
   r.external_work_j.assign(n, 0.0);
 
-  // Shapes stacked along the chain, mean lines t apart at each contact; measures.
+  // Shapes stacked along the chain, mean lines t apart at each contact; measures. Chain
+  // frame as Level 2 and the FE: ring 1 centred at y = 0 before the impact, the target fixed,
+  // so ring 1's top is at R − (impactor travel) (the massless chain: travel = Σ crush).
   const auto& ring = in.ring;
   const auto wrap = hinge::level3_wrap_mechanism(ring, res.theta_f);
+  const double final_travel = h.impactor_displacement_m.empty() ? 0.0 : h.impactor_displacement_m.back();
+  const auto final_shapes = chain_shapes(ring, wrap, res.rings, ring.mean_radius() - final_travel);
   std::vector<RingShape> shapes;
-  double top = 0.0;
-  for (const auto& rr : res.rings) {
-    const auto s = hinge::level3_ring_shape(ring, wrap, rr, top);
+  for (const auto& s : final_shapes) {
     shapes.push_back(to_ring_shape(s, ring.wall_thickness_m));
-    top = s.bottom_y - ring.wall_thickness_m;
+    r.ring_outline_m.push_back(full_mean_line(s));
+    r.ring_outline_m.back().push_back(r.ring_outline_m.back().front());
+  }
+  r.outline_half = false;
+  const double t = ring.wall_thickness_m;
+  for (std::size_t i : frame_samples(h.ring_state.size(), scene.outputs.fields ? scene.outputs.frames : 0)) {
+    const auto at = chain_shapes(ring, wrap, h.ring_state[i], ring.mean_radius() - h.impactor_displacement_m[i]);
+    ShapeFrame f;
+    f.time_s = h.time_s[i];
+    for (const auto& s : at) f.rings.push_back(full_mean_line(s));
+    f.body_faces = {ring.mean_radius() - h.impactor_displacement_m[i] + 0.5 * t, at.back().bottom_y - 0.5 * t};
+    r.shape_frames.push_back(std::move(f));
   }
   nlohmann::json hinge_map = nlohmann::json::array();
   nlohmann::json mech = nlohmann::json::array();

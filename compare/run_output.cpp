@@ -7,6 +7,7 @@
 
 #include "compare/measures.hpp"
 #include "compare/run_result_io.hpp"
+#include "compare/shape_output.hpp"
 #include "compare/svg_plot.hpp"
 #include "compare/version.hpp"
 
@@ -230,6 +231,8 @@ void write_run_result(const RunResult& r, const Scene& scene, ResultsDir& out) {
   // The whole RunResult, for `ringcrush compare` (cached runs) and scripts.
   write_json(out.file("run_result.json"), run_result_to_json(r));
   if (scene.outputs.plots) write_run_plots(r, scene, out);
+  write_shape_frames(r, out);  // models with shapes; the runner picked outputs.frames of them
+  if (scene.outputs.plots) write_final_shapes_svg(r, scene, out);
 }
 
 }  // namespace ringcrush::compare

@@ -26,6 +26,13 @@ struct SolverStatistics {
   double wall_time_s = 0.0;
 };
 
+struct ShapeFrame {
+  double time_s = 0.0;
+  std::vector<std::vector<std::array<double, 2>>> rings;  // [ring][point] full mean line, open (closed by the writer), chain frame (m)
+  std::vector<std::vector<double>> plastic_rotation;      // [ring][point] rad; empty: the model has no per-point value
+  std::vector<double> body_faces;                         // y of the impactor face, plates, target face (m)
+};
+
 struct RunResult {
   std::string model;           // "fe" | "hinge"
   std::string scene;           // scene name
@@ -54,6 +61,11 @@ struct RunResult {
   // (`outline_half`). Empty when the model has no shape (Levels 0, 1, shock).
   std::vector<std::vector<std::array<double, 2>>> ring_outline_m;
   bool outline_half = false;
+  // Mean lines over time, for the models that have shapes (hinge Levels 2 and 3): the
+  // scene's `outputs.frames` samples, first and last included, none when outputs.fields is
+  // off. Written as ParaView polylines and the final-shape SVG (compare/shape_output.hpp);
+  // an output, not a result: run_result_io does not store them.
+  std::vector<ShapeFrame> shape_frames;
 
   std::vector<RunEvent> events;
   SolverStatistics statistics;

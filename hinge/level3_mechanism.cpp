@@ -414,25 +414,42 @@ class Level3Chain final : public HybridSystem {
     for (int i = 0; i < n_; ++i) h.ring_crush_m[i].push_back(ring_crush(y.data(), i));
     h.kinetic_j.push_back(0.5 * in_.impactor_mass_kg * y[1] * y[1]);
     h.plastic_j.push_back(y[3]);
+    std::vector<Level3RingResult> states;
+    states.reserve(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) states.push_back(ring_state(y.data(), i));
+    h.ring_state.push_back(std::move(states));
+  }
+
+  // The geometric state of ring i (what level3_ring_shape draws).
+  Level3RingResult ring_state(const double* s, int i) const {
+    Level3RingResult rr;
+    rr.uniform_crush_m = s[4 + 3 * i + kU];
+    rr.wrap_crush_m = s[4 + 3 * i + kW];
+    rr.bottom_crush_m = s[4 + 3 * i + kL];
+    rr.crush_m = ring_crush(s, i);
+    rr.uniform_angle = uniform_phi(s, i);
+    rr.bottom_angle = reinforced_[i] ? bottom_psi(s, i) : 0.0;
+    rr.wrap_started = wrap_started_[i];
+    rr.reinforced = reinforced_[i];
+    rr.mode = wrap_started_[i] ? Level3Mode::Wrap : reinforced_[i] ? Level3Mode::Bottom : Level3Mode::Uniform;
+    if (wrap_started_[i]) {  // κ between the table's nodes, linear in the wrap crush
+      const std::size_t j = segment(w_.crush, rr.wrap_crush_m);
+      const std::size_t k = std::min(j + 1, w_.crush.size() - 1);
+      const double span = w_.crush[k] - w_.crush[j];
+      const double f = span > 0 ? std::clamp((rr.wrap_crush_m - w_.crush[j]) / span, 0.0, 1.0) : 0.0;
+      rr.wrap_curvature = w_.curvature[j] + f * (w_.curvature[k] - w_.curvature[j]);
+    }
+    return rr;
   }
 
   void finish(const std::vector<double>& y, Level3Result& res) const {
     const double* s = y.data();
     double total = 0.0;
     for (int i = 0; i < n_; ++i) {
-      Level3RingResult rr;
-      rr.uniform_crush_m = s[4 + 3 * i + kU];
-      rr.wrap_crush_m = s[4 + 3 * i + kW];
-      rr.bottom_crush_m = s[4 + 3 * i + kL];
-      rr.crush_m = ring_crush(s, i);
-      rr.uniform_angle = uniform_phi(s, i);
-      rr.bottom_angle = reinforced_[i] ? bottom_psi(s, i) : 0.0;
-      rr.wrap_started = wrap_started_[i];
-      rr.reinforced = reinforced_[i];
+      Level3RingResult rr = ring_state(s, i);
       const double eu = energy(s, 3 * i + kU), ew = energy(s, 3 * i + kW), el = reinforced_[i] ? energy(s, 3 * i + kL) : 0.0;
       rr.plastic_work_j = eu + ew + el;
       total += rr.plastic_work_j;
-      rr.mode = wrap_started_[i] ? Level3Mode::Wrap : reinforced_[i] ? Level3Mode::Bottom : Level3Mode::Uniform;
       // Hinge map (material angles from the top apex).
       const double fu = first_[3 * i + kU], fw = first_[3 * i + kW], fl = first_[3 * i + kL];
       const double phi = rr.uniform_angle;
@@ -446,7 +463,6 @@ class Level3Chain final : public HybridSystem {
         const std::size_t j = segment(w_.crush, q);
         const double kappa = w_.curvature[j], alpha = w_.chord_angle[j];
         const double S = R_ * (pi - w_.theta_f);
-        rr.wrap_curvature = kappa;
         rr.hinges.push_back({"C", 90.0, fw, std::abs(alpha - w_.chord_angle.front())});
         rr.hinges.push_back({"F", w_.theta_f * 180.0 / pi, fw,
                              std::abs((kappa - w_.curvature.front()) * S - (alpha - w_.chord_angle.front()))});
@@ -563,6 +579,15 @@ Level3Shape level3_ring_shape(const Level3Ring& r, const WrapMechanism& w, const
       pts.push_back({x, yb + y});
       th.push_back(pi - u / R);
     }
+    // The chain superposes the wrap on the uniform crush done before it (δ = δ_u + δ_w), so
+    // B also carries the uniform lower quadrant's rise R sin φ. The wrap table is built on
+    // the undeformed arc and has no place for it: the drawing lifts the lower arc by a
+    // vertical shear, 0 at C growing linearly in θ to R sin φ at B, which keeps the
+    // loading-point approach equal to δ (a drawing device, not a mechanism).
+    const double lift = R * std::sin(phi);
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      if (th[k] > 0.5 * pi) pts[k][1] += lift * (th[k] - 0.5 * pi) / (0.5 * pi);
+    yb += lift;
   } else {
     const double a = s.reinforced ? s.bottom_angle : phi;
     const double xcb = R - R * std::cos(a);

@@ -105,6 +105,9 @@ struct Level3History {
   std::vector<double> time_s, impactor_displacement_m, impactor_velocity_m_s, force_n;
   std::vector<std::vector<double>> ring_crush_m;  // [ring][sample]
   std::vector<double> kinetic_j, plastic_j;
+  // [sample][ring] the mechanism state of each ring (crushes, angles, curvature, mode; no
+  // hinge list or work), enough for level3_ring_shape: the shapes over time.
+  std::vector<std::vector<Level3RingResult>> ring_state;
 };
 
 struct Level3Event {

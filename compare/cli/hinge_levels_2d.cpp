@@ -5,9 +5,11 @@
 //   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //
-// hinge-shapes writes what `hinge --level 2` writes (summary.json, history.csv, SVG plots)
-// plus shapes.pvd + frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the
-// plastic rotation per node) and shapes_final.svg (final shapes over the undeformed ones).
+// `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
+// frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
+// per node; outputs.frames of them, none with outputs.fields = false) and shapes_final.svg
+// (compare/shape_output.hpp). hinge-shapes is the same run with frames forced on and their
+// number from --frames.
 //
 // bench-hinge2 runs the scene `repeat` times on one core and prints every wall time, the
 // median, the steps, and the final crush per ring with the wrap flags, so that the speed is
@@ -19,7 +21,6 @@
 
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_2d.hpp"
-#include "compare/hinge_shapes_output.hpp"
 #include "compare/results_dir.hpp"
 #include "compare/run_output.hpp"
 
@@ -93,7 +94,9 @@ struct ShapesOptions {
 };
 
 void shapes(const ShapesOptions& o) {
-  const Scene scene = load_scene(o.scene);
+  Scene scene = load_scene(o.scene);
+  if (o.frames) scene.outputs.frames = *o.frames;
+  scene.outputs.fields = true;
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   fmt::print("scene {}: {}\nhinge level 2 (polygon rings, N = {}) on {}\n", scene.name, scene.title,
              scene.hinge.nodes_per_ring, o.integrator);
@@ -106,9 +109,7 @@ void shapes(const ShapesOptions& o) {
              alternation(r.crush_ratio).index, run.raw.energy_balance_error, run.raw.steps,
              run.raw.wall_time_s);
   ResultsDir out(o.output);
-  write_run_result(r, scene, out);
-  write_level2_shape_frames(run, scene, out, o.frames ? *o.frames : scene.outputs.frames);
-  write_level2_final_svg(run, scene, out);
+  write_run_result(r, scene, out);  // with the shape frames and shapes_final.svg
   out.commit();
   fmt::print("wrote {}/{{summary.json, history.csv, shapes.pvd, frames/, shapes_final.svg, *.svg}}\n",
              out.target().string());

@@ -193,3 +193,44 @@ TEST(Level3Chain, Test30At50MetresPerSecondWrapsAndAlternates) {
   for (const auto& m : r.mode) EXPECT_EQ(m, "uniform");
   EXPECT_LT(compare::alternation(r.crush_ratio).index, compare::alternation_threshold);
 }
+
+// Shapes over time (issue 7 item 4): `outputs.frames` frames, the first the undeformed chain
+// (circles of the mean radius, ring 1 centred at y = 0), the target face fixed while the
+// impactor face follows the impactor, and in the last frame each ring's height along the
+// chain D − δ_i with δ_i the mechanism's own crush.
+TEST(Level3Chain, ShapeFramesFollowTheMechanismsAndKeepTheTargetFixed) {
+  auto sc = scene("test30_welded", 50.0);
+  sc.outputs.frames = 7;
+  const auto r = compare::run_hinge_level3(sc, options());
+  ASSERT_EQ(r.shape_frames.size(), 7u);
+  const double D = sc.rings.outer_diameter_m, t = sc.rings.wall_thickness_m, R = 0.5 * (D - t);
+  const auto& first = r.shape_frames.front();
+  const auto& last = r.shape_frames.back();
+  EXPECT_DOUBLE_EQ(first.time_s, 0.0);
+  EXPECT_DOUBLE_EQ(last.time_s, r.time_s.back());
+  ASSERT_EQ(first.rings.size(), 6u);
+  double cy = 0.0;
+  for (std::size_t i = 0; i < first.rings.size(); ++i) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& p : first.rings[i]) { lo = std::min(lo, p[1]); hi = std::max(hi, p[1]); }
+    const double c = 0.5 * (lo + hi);
+    if (i == 0) cy = c;
+    for (const auto& p : first.rings[i]) EXPECT_NEAR(std::hypot(p[0], p[1] - c), R, 1e-9) << "ring " << i + 1;
+  }
+  EXPECT_NEAR(cy, 0.0, 1e-12);
+  ASSERT_EQ(last.body_faces.size(), 2u);
+  EXPECT_NEAR(last.body_faces[1], first.body_faces[1], 1e-3 * t);  // target face
+  EXPECT_NEAR(first.body_faces[0] - last.body_faces[0], r.impactor_displacement_m.back(), 1e-12);
+  // Loading points: A first, B halfway round the full mean line. (The extent is not the
+  // crush of a wrapping ring: its lowest point is beside B, over the next ring's top.)
+  for (std::size_t i = 0; i < last.rings.size(); ++i) {
+    const auto& p = last.rings[i];
+    EXPECT_NEAR(p[p.size() / 2][0], 0.0, 1e-12) << "ring " << i + 1;
+    EXPECT_NEAR(2 * R - (p[0][1] - p[p.size() / 2][1]), r.crush_ratio[i] * D, 1e-3 * t) << "ring " << i + 1;
+  }
+  ASSERT_EQ(r.ring_outline_m.size(), 6u);  // final outlines, closed
+  EXPECT_EQ(r.ring_outline_m[0].front(), r.ring_outline_m[0].back());
+
+  sc.outputs.fields = false;  // no frames asked: none kept
+  EXPECT_TRUE(compare::run_hinge_level3(sc, options()).shape_frames.empty());
+}

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "compare/hinge_run_2d.hpp"
-#include "compare/hinge_shapes_output.hpp"
+#include "compare/shape_output.hpp"
 #include "compare/results_dir.hpp"
 #include "compare/scene.hpp"
 
@@ -48,7 +48,8 @@ int count(const std::string& text, const std::string& what) {
 }  // namespace
 
 TEST(PolygonOutput, RunResultAndShapeFiles) {
-  const Scene scene = short_scene();
+  Scene scene = short_scene();
+  scene.outputs.frames = 5;
   HingeRunOptions o;
   o.level = "2";
   o.relative_tolerance = 1e-8;  // below Level 2's floor: raised and reported
@@ -78,11 +79,17 @@ TEST(PolygonOutput, RunResultAndShapeFiles) {
   EXPECT_EQ(r.events.front().kind, "hinge_formed");
   EXPECT_EQ(r.events.front().ring, 0);
 
+  ASSERT_EQ(r.shape_frames.size(), 5u);  // scene.outputs.frames, first and last sample included
+  EXPECT_DOUBLE_EQ(r.shape_frames.front().time_s, 0.0);
+  EXPECT_NEAR(r.shape_frames.back().time_s, 4e-4, 1e-12);
+  ASSERT_EQ(r.shape_frames.back().rings.size(), 2u);
+  EXPECT_EQ(r.shape_frames.back().rings[0].size(), 48u);
+
   const fs::path dir = fs::temp_directory_path() / ("ringcrush_polygon_output_" + std::to_string(::getpid()));
   {
     ResultsDir out(dir);
-    write_level2_shape_frames(run, scene, out, 5);
-    write_level2_final_svg(run, scene, out);
+    write_shape_frames(r, out);
+    write_final_shapes_svg(r, scene, out);
     out.commit();
   }
   const std::string pvd = read(dir / "shapes.pvd");
@@ -97,4 +104,20 @@ TEST(PolygonOutput, RunResultAndShapeFiles) {
   EXPECT_EQ(count(svg, "<polygon"), 4);  // undeformed and final, two rings
   EXPECT_NE(svg.find("ring 1: c = "), std::string::npos);
   fs::remove_all(dir);
+}
+
+TEST(ShapeOutput, FrameSamplesAreEvenFirstAndLastIncludedWithoutRepeats) {
+  EXPECT_TRUE(frame_samples(100, 0).empty());  // outputs.frames = 0: no shapes kept
+  EXPECT_TRUE(frame_samples(0, 5).empty());
+  EXPECT_EQ(frame_samples(100, 1), (std::vector<std::size_t>{99}));
+  EXPECT_EQ(frame_samples(9, 5), (std::vector<std::size_t>{0, 2, 4, 6, 8}));
+  EXPECT_EQ(frame_samples(3, 10), (std::vector<std::size_t>{0, 1, 2}));
+}
+
+TEST(PolygonOutput, NoFieldsKeepsNoShapes) {
+  Scene scene = short_scene();
+  scene.outputs.fields = false;
+  HingeRunOptions o;
+  o.level = "2";
+  EXPECT_TRUE(run_level2(scene, o).result.shape_frames.empty());
 }
