@@ -276,6 +276,8 @@ const Eigen::VectorXd& ChainModel::lumped_mass() const { return impl_->mass; }
 SparseSystem& ChainModel::tangent_system() { return *impl_->system; }
 const ChainContactForces& ChainModel::contact_forces() const { return impl_->forces; }
 
+double ChainModel::contact_depth() const { return impl_->topo.ring.element_depth; }
+
 Eigen::VectorXd ChainModel::initial_velocity() const {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(dofs());
   v(impactor_dof()) = -input_.impactor_velocity_m_s;  // the chain lies below (−y)
@@ -348,7 +350,13 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
           if (face.kind == RigidFace::Kind::Impactor) cf.impactor_n += fn;
           if (face.kind == RigidFace::Kind::Target) cf.target_n += fn;
           contact_energy += 0.5 * k * gap * gap;
-          cf.max_penetration_m = std::max(cf.max_penetration_m, -gap);
+          if (-gap > cf.max_penetration_m) {
+            cf.max_penetration_m = -gap;
+            cf.deepest_node = node;
+            cf.deepest_into = face.kind == RigidFace::Kind::Impactor ? ChainContactForces::Surface::Impactor
+                              : face.kind == RigidFace::Kind::Target ? ChainContactForces::Surface::Target
+                                                                     : ChainContactForces::Surface::Plate;
+          }
           ++cf.active;
           m.pressure.emplace_back(node, fn / m.outer_area[i]);
         }
@@ -361,7 +369,12 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     cf.list_rebuilds = m.surface->rebuilds();
     cf.self_n = ss.self_force;
     cf.active += ss.active;
-    cf.max_penetration_m = std::max(cf.max_penetration_m, ss.max_penetration);
+    if (ss.max_penetration > cf.max_penetration_m) {
+      cf.max_penetration_m = ss.max_penetration;
+      cf.deepest_node = ss.deepest_node;
+      cf.deepest_into = ss.deepest_self ? ChainContactForces::Surface::OwnInnerWall : ChainContactForces::Surface::RingOuter;
+      cf.deepest_ring = ss.deepest_master_ring;
+    }
     contact_energy += ss.energy;
     m.surface_near_omega2 = ss.near_omega2;
     m.surface_near_node = ss.near_node;

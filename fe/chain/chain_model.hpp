@@ -55,6 +55,13 @@ struct ChainContactForces {
   double ring_ring_n = 0;      // Σ |normal force| of ring↔ring contact (model)
   double self_n = 0;           // Σ |normal force| of inner-wall contact (model)
   double max_penetration_m = 0;
+  // The deepest contact point: slave node (global id) and what it penetrates (for the
+  // diagnosis of a failed step: penalty contact acts only up to one through-wall element
+  // depth). deepest_ring: the master ring of a ring↔ring contact.
+  enum class Surface { None, RingOuter, OwnInnerWall, Impactor, Target, Plate };
+  int deepest_node = -1;
+  Surface deepest_into = Surface::None;
+  int deepest_ring = -1;
   int active = 0;              // active contact points
   int pairs_checked = 0;       // ring pairs that passed the broad phase
   long candidate_pairs = 0;    // (node, surface piece) pairs in the contact candidate list
@@ -83,6 +90,9 @@ class ChainModel final : public DynamicSystem {
 
   // Contact forces of the last evaluate().
   const ChainContactForces& contact_forces() const;
+  // Reach of the penalty contact: one element through the wall (a deeper penetration gets
+  // no force).
+  double contact_depth() const;
   // Contact pressure per node of the last evaluate() (for field output).
   std::vector<double> contact_pressure() const;
   int impactor_dof() const { return 2 * mesh_.impactor_node + 1; }

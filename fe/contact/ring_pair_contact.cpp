@@ -451,7 +451,12 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
       const double fn = -k * best_gap;
       (p.self ? st.self_force : st.ring_ring_force) += fn;
       st.energy += 0.5 * k * best_gap * best_gap;
-      st.max_penetration = std::max(st.max_penetration, -best_gap);
+      if (-best_gap > st.max_penetration) {
+        st.max_penetration = -best_gap;
+        st.deepest_node = node;
+        st.deepest_master_ring = p.master_ring;
+        st.deepest_self = p.self;
+      }
       ++st.active;
       if (pressure) pressure->emplace_back(node, fn / p.slave_area[s]);
     }

@@ -77,6 +77,9 @@ struct SurfaceContactState {
   double self_force = 0;        // Σ |normal force| of inner-wall contacts
   double energy = 0;            // penalty energy
   double max_penetration = 0;
+  // Where the deepest penetration is: slave node (global id), master ring, self contact.
+  int deepest_node = -1, deepest_master_ring = -1;
+  bool deepest_self = false;
   int active = 0;
   // Largest k (1/m_slave + 1.25 max 1/m_master) over slaves within one element depth of a
   // master surface (the contact spring's frequency bound, stable_step) and its node.

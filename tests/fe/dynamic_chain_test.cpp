@@ -297,6 +297,30 @@ TEST(DynamicChain, EnergyLimitStopsTheRun) {
   }
 }
 
+// A failed step says what the contact was doing (dynamic_run.cpp contact_context): HHT with
+// an unreachable half-step tolerance and a minimum step that soon stops it, once the impactor
+// is pressing on ring 1.
+TEST(DynamicChain, FailedStepNamesTheDeepestContact) {
+  DynamicSolverInput s;
+  s.scheme = DynamicScheme::Hht;
+  s.end_time_s = 2e-4;
+  s.frames = 0;
+  s.haftol_n = 1e-3;
+  s.initial_step_s = 2e-6;
+  s.min_step_s = 1e-6;
+  try {
+    run_dynamic(coarse_impact(), s);
+    FAIL() << "no SolveFailure";
+  } catch (const SolveFailure& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("HAFTOL"), std::string::npos) << m;
+    EXPECT_NE(m.find("deepest contact penetration"), std::string::npos) << m;
+    EXPECT_NE(m.find("of ring 1 (X = "), std::string::npos) << m;  // the impactor presses on ring 1
+    EXPECT_NE(m.find("into the impactor face"), std::string::npos) << m;
+    EXPECT_NE(m.find("% of the "), std::string::npos) << m;
+  }
+}
+
 TEST(DynamicChain, RejectsBadSolverInput) {
   DynamicSolverInput s;
   s.end_time_s = -1;
