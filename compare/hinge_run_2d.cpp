@@ -49,6 +49,7 @@ hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings&
   in.nodes_per_ring = scene.hinge.nodes_per_ring;
   in.half_symmetry = scene.analysis.symmetry == Symmetry::Half;
   in.redwood_alpha = scene.hinge.redwood_alpha;
+  in.redwood_fitted_hardening = scene.hinge.hardening_length == HingeSettings::HardeningLength::RedwoodFit;
   in.cowper_symonds_d_per_s = s.flow_d_per_s;
   in.cowper_symonds_q = s.flow_q;
   in.joint = joint_of(scene.joints.type);

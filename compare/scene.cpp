@@ -386,6 +386,13 @@ Scene parse_scene(const std::string& text, const std::string& file) {
     require(h.absolute_tolerance > 0, r, "absolute_tolerance", "must be positive");
     h.redwood_alpha = r.number("redwood_alpha", h.redwood_alpha);
     require(h.redwood_alpha > 0, r, "redwood_alpha", "must be positive");
+    h.hardening_length = r.choice<HingeSettings::HardeningLength>(
+        "hardening_length",
+        {{"alpha_t", HingeSettings::HardeningLength::AlphaT}, {"redwood_fit", HingeSettings::HardeningLength::RedwoodFit}},
+        h.hardening_length);
+    require(h.hardening_length != HingeSettings::HardeningLength::RedwoodFit ||
+                (h.redwood_alpha >= 1 && h.redwood_alpha <= 4),
+            r, "hardening_length", "\"redwood_fit\" is fitted for redwood_alpha in [1, 4]");
     h.nodes_per_ring = static_cast<int>(r.integer("nodes_per_ring", h.nodes_per_ring));
     require(h.nodes_per_ring >= 8 && h.nodes_per_ring <= 4096 && h.nodes_per_ring % 4 == 0, r,
             "nodes_per_ring", "must be a multiple of 4 between 8 and 4096");

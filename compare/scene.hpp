@@ -109,6 +109,9 @@ struct HingeSettings {
   double relative_tolerance = 1e-8;
   double absolute_tolerance = 1e-10;
   double redwood_alpha = 2.0;
+  // Level 2 hinge hardening length: α t at every node, or fitted so that one polygon ring
+  // follows Redwood's curve for α (hinge/redwood_hinge_length.hpp).
+  enum class HardeningLength { AlphaT, RedwoodFit } hardening_length = HardeningLength::AlphaT;
   int nodes_per_ring = 48;
 };
 

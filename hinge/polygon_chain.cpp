@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hinge/redwood_hinge_length.hpp"
+
 namespace ringcrush::hinge {
 
 namespace {
@@ -53,7 +55,8 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   k_m_ = in_.youngs_modulus_pa * t_ * in_.width_m / l0_;
   M0_ = in_.yield_stress_pa * t_ * t_ * in_.width_m / 4.0;
   const double lh = in_.redwood_alpha > 0 ? in_.redwood_alpha * t_ : l0_;
-  H_ = in_.hardening_modulus_pa * I / lh;
+  H_ = in_.hardening_modulus_pa * I /
+       (in_.redwood_fitted_hardening ? redwood_hinge_length(in_.redwood_alpha, l0_) : lh);
   cap_ = in_.yield_cap_ratio > 0 ? in_.yield_cap_ratio * M0_ : std::numeric_limits<double>::infinity();
   C_vp_ = 2.0 * lh / t_ * in_.cowper_symonds_d_per_s;
   q_ = in_.cowper_symonds_q;

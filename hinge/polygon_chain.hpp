@@ -48,6 +48,9 @@ struct PolygonChainInput {
   // H_θ = E′ I / l_h. Viscoplastic Cowper–Symonds flow
   //   λ̇ = (2 l_h / t) D ⟨|M|/M_y − 1⟩^q.
   double redwood_alpha = 0.0;
+  // true: the hardening uses the hinge length fitted so that one ring follows Redwood's
+  // curve for redwood_alpha (redwood_hinge_length.hpp) instead of α t; the flow law keeps α t.
+  bool redwood_fitted_hardening = false;
   double cowper_symonds_d_per_s = 40.4;  // mild steel, Jones (1989)
   double cowper_symonds_q = 5.0;
 
