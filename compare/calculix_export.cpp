@@ -17,14 +17,7 @@ namespace ringcrush::compare {
 using namespace calculix_parts;
 
 CalculixDeck calculix_deck(const Scene& s, CalculixSection section) {
-  if (s.analysis.type != AnalysisType::Static)
-    throw std::invalid_argument(fmt::format(
-        "export-calculix: scene {} is a dynamic analysis; only static scenes (one ring between rigid plates) are "
-        "mapped. A chain's impactor cannot be written for ccx 2.20: as a *RIGID BODY (or *EQUATION-tied) strip of "
-        "2-D elements with *MASS its *DYNAMIC step diverges at the second increment, and an *INITIAL CONDITIONS "
-        "velocity on CPS8 nodes is reported but never moves them (a free CPS8 element at 30 m/s keeps zero "
-        "displacement, a C3D8 moves 0.3 mm in 10 us)",
-        s.name));
+  if (s.analysis.type != AnalysisType::Static) return calculix_chain_deck(s, section);
   // The same FE input (and the same refusals: chains, plane strain, friction) as `ringcrush fe`.
   const fe::FeInput in = fe_static_input(s);
   const fe::RingMesh mesh = fe::make_ring_mesh(in.ring, in.mesh);

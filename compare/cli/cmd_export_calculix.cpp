@@ -39,9 +39,18 @@ void run_export(const ExportOptions& o) {
   write_text(out.file(s.name + ".inp"), deck.deck);
   write_text(out.file("README.txt"), deck.readme);
   out.commit();
-  fmt::print("export-calculix {}: {} nodes, {} elements ({} ring); driven plate reference node {}; ring load = {:g} x "
-             "the plate's reaction\n",
-             s.name, deck.nodes, deck.elements, deck.ring_elements, deck.driven_reference_node, deck.load_factor);
+  if (deck.dynamic) {
+    fmt::print("export-calculix {}: *DYNAMIC deck, {} nodes, {} elements ({} ring {}); impactor *RIGID BODY, "
+               "reference node {}, {:g} kg in the deck at {:g} m/s; forces and masses of the chain = {:g} x the "
+               "deck's\n",
+               s.name, deck.nodes, deck.elements, deck.ring_elements, deck.ring_element_type,
+               deck.driven_reference_node, deck.impactor_mass_kg, deck.impactor_velocity_m_s, deck.load_factor);
+    for (const auto& p : deck.contact_pairs) fmt::print("  contact pair: {}\n", p);
+  } else {
+    fmt::print("export-calculix {}: {} nodes, {} elements ({} ring); driven plate reference node {}; ring load = {:g} "
+               "x the plate's reaction\n",
+               s.name, deck.nodes, deck.elements, deck.ring_elements, deck.driven_reference_node, deck.load_factor);
+  }
   for (const auto& a : deck.approximations) fmt::print("  approximation: {}\n", a);
   fmt::print("wrote {}/{}.inp\n", out.target().string(), s.name);
 }

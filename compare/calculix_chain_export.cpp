@@ -1,0 +1,313 @@
+// The dynamic half of compare/calculix_export.hpp: a ring chain under impact (issue 4, thesis
+// §3.5, §4.2) as a CalculiX *DYNAMIC deck on the mesh of fe/chain/chain_mesh, written as one
+// layer of 20-node bricks (compare/calculix_slab.hpp) because ccx 2.20's own CPS8 expansion
+// loses initial velocities and rigid bodies (measured, see the header).
+//
+// ringcrush's rigid bodies are single nodes with analytic contact planes (impactor, joint
+// plates, target); ccx needs meshed master surfaces, so each becomes a strip of bricks: the
+// impactor and the joint plates *RIGID BODY strips whose reference node carries the body's
+// mass (*MASS) and, for the impactor, the impact velocity (*INITIAL CONDITIONS on every node
+// of the body); the fixed target a strip held in place. Welded joints need no *EQUATION:
+// ringcrush itself makes the touching outer nodes of neighbours ONE node (the thesis's *MPC
+// ties), and the deck carries that node (through the slab). Free joints are contact pairs
+// ring i ↔ ring i+1.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "compare/calculix_deck_parts.hpp"
+#include "compare/calculix_export.hpp"
+#include "compare/calculix_slab.hpp"
+#include "compare/fe_dynamic.hpp"
+#include "compare/version.hpp"
+#include "fe/chain/chain_mesh.hpp"
+
+namespace ringcrush::compare {
+using namespace calculix_parts;
+
+namespace {
+
+struct Body {
+  std::string name;
+  PlateStrip strip;
+  int node0 = 0;  // 0-based index of the strip's first node in the 2-D node list
+  int elem0 = 0;  // 1-based id of its first element
+  int ref = 0, rot = 0, mass_elem = 0;
+  double mass_kg = 0;  // of the model (deck)
+  bool rigid = true;
+};
+
+std::vector<int> plane_ids(int first0, std::size_t count) { return id_range(first0 + 1, count); }
+
+}  // namespace
+
+CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
+  // The same input (and the same refusals) as `ringcrush fe` on a dynamic scene.
+  const fe::ChainInput in = fe_chain_input(s);
+  const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
+  const fe::ChainTopology topo = fe::make_chain_topology(in);
+  const fe::ChainMesh& mesh = topo.mesh;
+  const bool half = in.mesh.half_ring;
+  const double r_out = in.ring.outer_radius_m;
+  const double diameter = 2 * r_out;
+  const double wall = in.ring.outer_radius_m - in.ring.inner_radius_m;
+
+  CalculixDeck out;
+  out.dynamic = true;
+  out.symmetry_factor = half ? 2.0 : 1.0;
+  out.section_thickness_m = section == CalculixSection::FullWidth ? in.ring.width_m : 0.1 * wall;
+  out.load_factor = out.symmetry_factor * in.ring.width_m / out.section_thickness_m;
+  // A half model carries half of every mass, a slab of thickness s carries s/L of it: the
+  // ring's through *DENSITY, the rigid bodies through *MASS / load_factor.
+  const double mass_factor = 1.0 / out.load_factor;
+  // ringcrush's rigid-body nodes come after the ring nodes (chain_mesh.cpp); only the ring
+  // nodes are written, the bodies become strips.
+  const int ring_plane_nodes = mesh.impactor_node;
+  out.ring_elements = static_cast<int>(mesh.elements.size());
+  const int per_ring = out.ring_elements / in.rings;
+
+  // Strips reach one diameter to each side of the axis (a flattened ring spreads over at
+  // most π R / 2 ≈ 0.79 D on each side).
+  const int strip_elements = half ? 8 : 16;
+  const double x_lo = half ? 0.0 : -diameter;
+  const double strip_thickness = 2 * wall;
+  std::vector<Body> bodies;
+  // Impactor: its lower face on ring 1's top (y = R, ringcrush's impactor node), the strip above.
+  bodies.push_back({"IMPACTOR", make_plate_strip(x_lo, diameter, strip_elements, r_out, strip_thickness, true)});
+  bodies.back().mass_kg = in.impactor_mass_kg * mass_factor;
+  if (in.joints == fe::JointKind::Plates)
+    for (int k = 0; k + 1 < in.rings; ++k) {
+      // Plate k between rings k and k+1: its upper face on ring k's bottom, the scene's thickness.
+      const double top_face = mesh.nodes[static_cast<std::size_t>(mesh.plate_nodes[static_cast<std::size_t>(k)])].y() +
+                              topo.plate_half_thickness;
+      bodies.push_back({fmt::format("PLATE{}", k + 1),
+                        make_plate_strip(x_lo, diameter, strip_elements, top_face, 2 * topo.plate_half_thickness,
+                                         false)});
+      bodies.back().mass_kg = in.plate_mass_kg * mass_factor;
+    }
+  if (in.fixed_target) {
+    bodies.push_back({"TARGET", make_plate_strip(x_lo, diameter, strip_elements, topo.target_y, strip_thickness, false)});
+    bodies.back().rigid = false;
+  }
+
+  // The 2-D node and element lists of everything (rings first, as ringcrush numbers them).
+  std::vector<Eigen::Vector2d> xy(mesh.nodes.begin(), mesh.nodes.begin() + ring_plane_nodes);
+  std::vector<std::array<int, 8>> all_elements(mesh.elements);
+  int next_elem = out.ring_elements + 1;
+  for (auto& b : bodies) {
+    b.node0 = static_cast<int>(xy.size());
+    b.elem0 = next_elem;
+    xy.insert(xy.end(), b.strip.nodes.begin(), b.strip.nodes.end());
+    for (auto e : b.strip.elements) {
+      for (int& n : e) n += b.node0;
+      all_elements.push_back(e);
+    }
+    next_elem += static_cast<int>(b.strip.elements.size());
+  }
+  const Slab slab = make_slab(static_cast<int>(xy.size()), all_elements, out.section_thickness_m);
+  {
+    const Slab ring_slab = make_slab(ring_plane_nodes, mesh.elements, out.section_thickness_m);
+    out.ring_nodes = ring_slab.nodes();
+  }
+  int next_node = 3 * slab.plane_nodes + 1;  // after the highest brick id
+  for (auto& b : bodies)
+    if (b.rigid) {
+      b.ref = next_node++;  // ccx: reference and rotation nodes belong to no element
+      b.rot = next_node++;
+      b.mass_elem = next_elem++;
+    }
+  out.nodes = slab.nodes() + 2 * static_cast<int>(std::count_if(bodies.begin(), bodies.end(),
+                                                                  [](const Body& b) { return b.rigid; }));
+  out.elements = next_elem - 1;
+  out.driven_reference_node = bodies.front().ref;
+  out.impactor_mass_kg = bodies.front().mass_kg;
+  out.impactor_velocity_m_s = in.impactor_velocity_m_s;
+
+  const auto& mat = s.rings.material;
+  const double penalty_slope = in.contact.penalty_scale * mat.youngs_modulus_pa / topo.ring.element_depth;
+  const std::string type = s.fe.integration == Integration::Reduced ? "C3D20R" : "C3D20";
+  out.ring_element_type = type;
+
+  if (s.fe.integration == Integration::Selective)
+    out.approximations.push_back(
+        "fe.integration = \"selective\" has no ccx element: written as C3D20 (full 3x3x3 integration)");
+  out.approximations.push_back(fmt::format(
+      "plane stress: one layer of {} bricks through a slab {} (u_z = 0 on the face z = 0, the other face free; "
+      "written as bricks because ccx 2.20's own CPS8 expansion drops initial velocities); every mass and force in "
+      "the deck is the physical one / {:.6g}, displacements and velocities are physical",
+      type,
+      section == CalculixSection::FullWidth ? "as thick as the ring (near plane strain)"
+                                            : fmt::format("s = t/10 = {:.6g} m thick", out.section_thickness_m),
+      out.load_factor));
+  out.approximations.push_back(
+      "impactor and joint plates: *RIGID BODY strips of C3D20R bricks (impactor two wall thicknesses thick, plates "
+      "the scene's thickness) whose reference node carries the body's mass (*MASS); their element density is "
+      "negligible (1 kg/m^3); the target: a strip held in place");
+  if (in.joints == fe::JointKind::Welded)
+    out.approximations.push_back(
+        "welded joints: ringcrush merges the touching outer nodes of neighbouring rings into one node; the deck "
+        "keeps that node (through the slab), no *EQUATION needed");
+  out.approximations.push_back(
+      "contact pairs: impactor face / ring 1, each ring / its neighbour (free and welded joints), plate faces / "
+      "their rings, last ring / target, inner wall near the bottom / near the top of each ring (within 60 deg); "
+      "ringcrush checks every ring against every face and ring and smooths its master segments (no ccx "
+      "counterpart)");
+  out.approximations.push_back(fmt::format(
+      "contact: node-to-surface penalty, pressure/overclosure = scale * E / h = {:.6g} Pa/m", penalty_slope));
+  out.approximations.push_back(
+      solver.scheme == fe::DynamicScheme::Hht
+          ? fmt::format("time integration: ccx *DYNAMIC (implicit alpha method, ALPHA = {:g}) with the scene's "
+                        "initial step; ringcrush's HAFTOL/PTOL step control is not mapped (ccx uses its own)",
+                        s.fe.hht_alpha)
+          : "time integration: ccx *DYNAMIC, EXPLICIT with the scene's initial step; ringcrush's stable-step "
+            "control is not mapped");
+  out.approximations.push_back("end: ccx runs to analysis.end_time_s; ringcrush's stop-at-rest test is not mapped");
+
+  std::ostringstream o;
+  o << fmt::format("** CalculiX (ccx 2.20) deck of ringcrush scene {} -- written by ringcrush {}\n", s.name,
+                   version());
+  o << fmt::format("** Units SI. Impact of a chain of {} ring(s) ({} joints). Forces and masses of the chain = {:.6g} x "
+                   "the deck's.\n",
+                   in.rings, to_string(s.joints.type), out.load_factor);
+  o << "*HEADING\n" << fmt::format("ringcrush scene {}: {}\n", s.name, s.title);
+  o << fmt::format("** Rings: the chain mesh of fe/chain/chain_mesh (2-D nodes 1..{}), then the strips; brick "
+                   "nodes n (z = 0), n + {} (z = s), n + {} (z = s/2)\n",
+                   ring_plane_nodes, slab.plane_nodes, 2 * slab.plane_nodes);
+  write_slab_nodes(o, slab, xy);
+  for (const auto& b : bodies)
+    if (b.rigid) {
+      const auto& f = b.strip.nodes[static_cast<std::size_t>(b.strip.reference)];
+      o << fmt::format("{}, {}, {}, {}\n{}, {}, {}, {}\n", b.ref, num(f.x()), num(f.y()), num(0.5 * slab.thickness),
+                       b.rot, num(f.x()), num(f.y()), num(0.5 * slab.thickness));
+    }
+  write_bricks(o, "RINGS", type, slab, mesh.elements, 1);
+  for (const auto& b : bodies) {
+    std::vector<std::array<int, 8>> es(all_elements.begin() + (b.elem0 - 1),
+                                       all_elements.begin() + (b.elem0 - 1) + static_cast<long>(b.strip.elements.size()));
+    write_bricks(o, b.name, "C3D20R", slab, es, b.elem0);
+  }
+  for (const auto& b : bodies)
+    if (b.rigid) o << fmt::format("*ELEMENT, TYPE=MASS, ELSET={}_MASS\n{}, {}\n", b.name, b.mass_elem, b.ref);
+
+  for (const auto& b : bodies) {
+    o << fmt::format("*NSET, NSET={}_NODES\n", b.name);
+    write_ids(o, slab.through(plane_ids(b.node0, b.strip.nodes.size())));
+    if (b.rigid) o << fmt::format("*NSET, NSET={}_REF\n{}\n*NSET, NSET={}_ROT\n{}\n", b.name, b.ref, b.name, b.rot);
+  }
+  std::vector<int> fixed;
+  for (int dof : topo.fixed_dofs)
+    if (dof / 2 < ring_plane_nodes) fixed.push_back(dof / 2 + 1);
+  o << (half ? "** x = 0 symmetry plane of the half rings\n" : "** u_x of the outer points on the chain axis\n");
+  o << "*NSET, NSET=RING_FIXED_X\n";
+  write_ids(o, slab.through(fixed));
+  o << "** the face z = 0 of the slab: u_z = 0 (mid-plane symmetry of a slab 2s thick, plane stress)\n";
+  o << "*NSET, NSET=RING_FRONT\n";
+  write_ids(o, plane_ids(0, static_cast<std::size_t>(ring_plane_nodes)));
+
+  // Outer surface of each ring: CPS8 face 1 of its outer layer of elements (ring_mesh.cpp
+  // order), brick face S3; inner wall: CPS8 face 3 of its inner layer, brick face S5, split
+  // by the reference angle φ of the face's middle node into the part near the ring's top
+  // (φ within π/3 of π) and near its bottom (within π/3 of 0), as the static deck; ringcrush
+  // never pairs inner points closer than π/3 of arc.
+  const double pi = std::numbers::pi;
+  const int through = in.mesh.elements_through;
+  for (int i = 0; i < in.rings; ++i) {
+    o << fmt::format("*SURFACE, NAME=RING{}_OUTER, TYPE=ELEMENT\n", i + 1);
+    for (int e = 0; e < per_ring; e += through) o << i * per_ring + e + 1 << ", " << brick_face(1) << "\n";
+    std::vector<int> bottom, top;
+    for (int e = through - 1; e < per_ring; e += through) {
+      const double phi = topo.ring.node_angle[static_cast<std::size_t>(topo.ring.elements[static_cast<std::size_t>(e)][6])];
+      if (std::min(phi, 2 * pi - phi) < pi / 3) bottom.push_back(i * per_ring + e + 1);
+      if (std::abs(phi - pi) < pi / 3) top.push_back(i * per_ring + e + 1);
+    }
+    o << fmt::format("*SURFACE, NAME=RING{}_INNER_BOTTOM, TYPE=ELEMENT\n", i + 1);
+    for (int e : bottom) o << e << ", " << brick_face(3) << "\n";
+    o << fmt::format("*SURFACE, NAME=RING{}_INNER_TOP, TYPE=ELEMENT\n", i + 1);
+    for (int e : top) o << e << ", " << brick_face(3) << "\n";
+  }
+  for (const auto& b : bodies) {
+    o << fmt::format("*SURFACE, NAME={}_FACE, TYPE=ELEMENT\n{}, {}\n", b.name, b.name, brick_face(1));
+    if (b.name.rfind("PLATE", 0) == 0)
+      o << fmt::format("*SURFACE, NAME={}_BACK, TYPE=ELEMENT\n{}, {}\n", b.name, b.name, brick_face(3));
+  }
+
+  o << "*MATERIAL, NAME=RING_MATERIAL\n*ELASTIC\n" << num(mat.youngs_modulus_pa) << ", " << num(mat.poisson_ratio)
+    << "\n*PLASTIC\n";
+  for (const auto& h : mat.hardening) o << num(h.yield_stress_pa) << ", " << num(h.plastic_strain) << "\n";
+  o << "*DENSITY\n" << num(mat.density_kg_m3) << "\n";
+  o << "** strips: a rigid body's mass is the *MASS of its reference node, the elements' is negligible\n";
+  o << "*MATERIAL, NAME=STRIP_MATERIAL\n*ELASTIC\n" << num(mat.youngs_modulus_pa) << ", " << num(mat.poisson_ratio)
+    << "\n*DENSITY\n1\n";
+  o << "*SOLID SECTION, ELSET=RINGS, MATERIAL=RING_MATERIAL\n";
+  for (const auto& b : bodies) o << fmt::format("*SOLID SECTION, ELSET={}, MATERIAL=STRIP_MATERIAL\n", b.name);
+  for (const auto& b : bodies)
+    if (b.rigid)
+      o << fmt::format("*MASS, ELSET={}_MASS\n{}\n*RIGID BODY, NSET={}_NODES, REF NODE={}, ROT NODE={}\n", b.name,
+                       num(b.mass_kg), b.name, b.ref, b.rot);
+
+  o << "** frictionless penalty contact, pressure = K * overclosure (K = scale * E / h)\n";
+  o << "*SURFACE INTERACTION, NAME=PENALTY\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n" << num(penalty_slope)
+    << "\n";
+  auto pair = [&](const std::string& slave, const std::string& master) {
+    o << "*CONTACT PAIR, INTERACTION=PENALTY, TYPE=NODE TO SURFACE\n" << slave << ", " << master << "\n";
+    out.contact_pairs.push_back(slave + " / " + master);
+  };
+  pair("RING1_OUTER", "IMPACTOR_FACE");
+  for (int k = 0; k + 1 < in.rings; ++k) {
+    if (in.joints == fe::JointKind::Plates) {
+      pair(fmt::format("RING{}_OUTER", k + 1), fmt::format("PLATE{}_FACE", k + 1));
+      pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("PLATE{}_BACK", k + 1));
+    } else {
+      pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("RING{}_OUTER", k + 1));
+    }
+  }
+  if (in.fixed_target) pair(fmt::format("RING{}_OUTER", in.rings), "TARGET_FACE");
+  if (in.contact.self_contact)
+    for (int i = 0; i < in.rings; ++i)
+      pair(fmt::format("RING{}_INNER_BOTTOM", i + 1), fmt::format("RING{}_INNER_TOP", i + 1));
+
+  o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nRING_FRONT, 3, 3\n";
+  for (const auto& b : bodies) {
+    if (b.rigid) o << fmt::format("{}_REF, 1, 1\n{}_REF, 3, 3\n{}_ROT, 1, 3\n", b.name, b.name, b.name);
+    else o << fmt::format("{}_NODES, 1, 3\n", b.name);
+  }
+  o << "** the impactor (every node of the body and its reference node) moves toward the chain\n";
+  o << "*INITIAL CONDITIONS, TYPE=VELOCITY\n"
+    << fmt::format("IMPACTOR_NODES, 2, {}\nIMPACTOR_REF, 2, {}\n", num(-in.impactor_velocity_m_s),
+                   num(-in.impactor_velocity_m_s));
+
+  o << "*STEP, NLGEOM, INC=10000000\n";
+  if (solver.scheme == fe::DynamicScheme::Hht)
+    o << fmt::format("*DYNAMIC, ALPHA={}\n{}, {}, {}, {}\n", num(s.fe.hht_alpha), num(solver.initial_step_s),
+                     num(solver.end_time_s), num(solver.min_step_s), num(solver.max_step_s));
+  else
+    o << fmt::format("*DYNAMIC, EXPLICIT\n{}, {}\n", num(solver.initial_step_s), num(solver.end_time_s));
+  o << "*NODE PRINT, NSET=IMPACTOR_REF\nU, V\n";
+  if (in.fixed_target) o << "*NODE PRINT, NSET=TARGET_NODES, TOTALS=ONLY\nRF\n";
+  o << "*NODE FILE, FREQUENCY=100\nU, V\n*EL FILE, FREQUENCY=100\nS, PEEQ\n*END STEP\n";
+  out.deck = o.str();
+
+  std::ostringstream r;
+  r << fmt::format("CalculiX deck of ringcrush scene {} ({})\n\n", s.name, s.title);
+  r << fmt::format("Run:    ccx -i {}        (writes {}.dat, {}.frd)\n", s.name, s.name, s.name);
+  r << fmt::format("Output: impactor reference node U, V (set IMPACTOR_REF, physical){}; forces of the chain = {:.6g} x "
+                   "the deck's.\n\n",
+                   in.fixed_target ? ", target reaction (set TARGET_NODES, totals)" : "", out.load_factor);
+  r << fmt::format("Mapped: {} nodes, {} elements ({} ring {} on the ringcrush chain mesh, {} ring(s) x {} per half "
+                   "ring x {} through); *DENSITY {} kg/m^3; impactor {} kg at {} m/s (physical; {:.6g} kg in the deck)\n",
+                   out.nodes, out.elements, out.ring_elements, type, in.rings, in.mesh.elements_around,
+                   in.mesh.elements_through, num(mat.density_kg_m3), num(in.impactor_mass_kg),
+                   num(in.impactor_velocity_m_s), out.impactor_mass_kg);
+  r << "Contact pairs (slave / master):\n";
+  for (const auto& p : out.contact_pairs) r << "  " << p << "\n";
+  r << "Approximations and what is not mapped:\n";
+  for (const auto& a : out.approximations) r << "  - " << a << "\n";
+  out.readme = r.str();
+  return out;
+}
+
+}  // namespace ringcrush::compare
