@@ -4,10 +4,11 @@
 // loses initial velocities and rigid bodies (measured, see the header).
 //
 // ringcrush's rigid bodies are single nodes with analytic contact planes (impactor, joint
-// plates, target); ccx needs meshed master surfaces, so each becomes a strip of bricks: the
-// impactor and the joint plates *RIGID BODY strips whose reference node carries the body's
-// mass (*MASS) and, for the impactor, the impact velocity (*INITIAL CONDITIONS on every node
-// of the body); the fixed target a strip held in place. Welded joints need no *EQUATION:
+// plates, target); here each is a strip of bricks: the impactor and the joint plates *RIGID
+// BODY strips whose reference node carries the body's mass (*MASS) and, for the impactor, the
+// impact velocity (*INITIAL CONDITIONS on every node of the body); the fixed target a strip
+// held in place. Their contact with the rings is ringcrush's own: a plane with a penalty
+// spring per node, written as GAPUNI elements (see the gap block below for why). Welded joints need no *EQUATION:
 // ringcrush itself makes the touching outer nodes of neighbours ONE node (the thesis's *MPC
 // ties), and the deck carries that node (through the slab). Free joints are contact pairs
 // ring i ↔ ring i+1.
@@ -114,15 +115,17 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
     out.ring_nodes = ring_slab.nodes();
   }
   int next_node = 3 * slab.plane_nodes + 1;  // after the highest brick id
-  for (auto& b : bodies)
+  int extra_nodes = 0;
+  for (auto& b : bodies) {
+    b.ref = next_node++;  // ccx: reference and rotation nodes belong to no element
+    ++extra_nodes;
     if (b.rigid) {
-      b.ref = next_node++;  // ccx: reference and rotation nodes belong to no element
       b.rot = next_node++;
+      ++extra_nodes;
       b.mass_elem = next_elem++;
     }
-  out.nodes = slab.nodes() + 2 * static_cast<int>(std::count_if(bodies.begin(), bodies.end(),
-                                                                  [](const Body& b) { return b.rigid; }));
-  out.elements = next_elem - 1;
+  }
+  out.nodes = slab.nodes() + extra_nodes;
   out.driven_reference_node = bodies.front().ref;
   out.impactor_mass_kg = bodies.front().mass_kg;
   out.impactor_velocity_m_s = in.impactor_velocity_m_s;
@@ -131,6 +134,54 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   const double penalty_slope = in.contact.penalty_scale * mat.youngs_modulus_pa / topo.ring.element_depth;
   const std::string type = s.fe.integration == Integration::Reduced ? "C3D20R" : "C3D20";
   out.ring_element_type = type;
+
+  // Rigid faces as ringcrush models them: a plane with a penalty spring per outer node
+  // (fe/chain/chain_model.cpp, k = scale·E·w·L/h). ccx's meshed-surface contact does not run
+  // here (node-to-surface: "too many cutbacks" at the second increment, its impact rules
+  // halving the increment below 1e-10 s; surface-to-surface: increments of ~1e-8 s), so each
+  // face is a set of GAPUNI elements, one per brick node of the facing outer nodes, to the
+  // body's reference node along the face normal: clearance = the node's distance to the plane,
+  // stiffness = the node's share of the penalty (in-plane weight w of ring_mesh × the slab
+  // layer's weight: 1/6, 2/3, 1/6 at a corner's front, middle, back nodes, 1/2, 1/2 at a
+  // midside's) × scale·E·s/h. A node shares the plane's rigid motion exactly (frictionless).
+  struct Gap {
+    int node, body, id;
+    double clearance, normal_y, stiffness;
+  };
+  std::vector<Gap> gaps;
+  auto face_gaps = [&](int ring, int body, double face_y, double normal_y) {
+    // normal_y: from the ring toward the body (+1: the body is above the ring)
+    const double yc = mesh.ring_centre_y[static_cast<std::size_t>(ring)];
+    for (std::size_t j = 0; j < topo.ring.outer_nodes.size(); ++j) {
+      const int n = topo.ring_node[static_cast<std::size_t>(ring)][static_cast<std::size_t>(topo.ring.outer_nodes[j])] + 1;
+      const double y = xy[static_cast<std::size_t>(n - 1)].y();
+      if ((y - yc) * normal_y < 0) continue;  // the half of the ring facing the body
+      const double k = penalty_slope * topo.ring.outer_weight[j] * slab.thickness;
+      const double clearance = std::max(0.0, (face_y - y) * normal_y);
+      const bool corner = slab.corner[static_cast<std::size_t>(n - 1)];
+      const std::vector<std::pair<int, double>> layers =
+          corner ? std::vector<std::pair<int, double>>{{slab.front(n), 1.0 / 6}, {slab.middle(n), 2.0 / 3},
+                                                       {slab.back(n), 1.0 / 6}}
+                 : std::vector<std::pair<int, double>>{{slab.front(n), 0.5}, {slab.back(n), 0.5}};
+      for (const auto& [id, share] : layers) gaps.push_back({id, body, 0, clearance, normal_y, k * share});
+    }
+  };
+  face_gaps(0, 0, r_out, 1.0);
+  for (std::size_t bi = 1; bi < bodies.size(); ++bi) {
+    const Body& b = bodies[bi];
+    const double top_face = b.strip.nodes[static_cast<std::size_t>(b.strip.reference)].y();
+    const int body = static_cast<int>(bi);
+    if (b.name == "TARGET") {
+      face_gaps(in.rings - 1, body, top_face, -1.0);
+    } else {  // PLATEk between rings k-1 and k (0-based): upper face top_face, lower face − thickness
+      const int k = static_cast<int>(bi) - 1;
+      face_gaps(k, body, top_face, -1.0);
+      face_gaps(k + 1, body, top_face - 2 * topo.plate_half_thickness, 1.0);
+    }
+  }
+  for (auto& g : gaps) g.id = next_elem++;
+  out.elements = next_elem - 1;
+  out.gap_elements = static_cast<int>(gaps.size());
 
   if (s.fe.integration == Integration::Selective)
     out.approximations.push_back(
@@ -151,13 +202,21 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
     out.approximations.push_back(
         "welded joints: ringcrush merges the touching outer nodes of neighbouring rings into one node; the deck "
         "keeps that node (through the slab), no *EQUATION needed");
-  out.approximations.push_back(
-      "contact pairs: impactor face / ring 1, each ring / its neighbour (free and welded joints), plate faces / "
-      "their rings, last ring / target, inner wall near the bottom / near the top of each ring (within 60 deg); "
-      "ringcrush checks every ring against every face and ring and smooths its master segments (no ccx "
-      "counterpart)");
   out.approximations.push_back(fmt::format(
-      "contact: node-to-surface penalty, pressure/overclosure = scale * E / h = {:.6g} Pa/m", penalty_slope));
+      "rigid faces (impactor on ring 1, plates on their two rings, target under the last ring): {} GAPUNI "
+      "elements, one per brick node of the facing half ring to the body's reference node, clearance = distance to "
+      "the plane, stiffness = the node's share of ringcrush's penalty (scale * E * w * s / h); ccx's meshed "
+      "*CONTACT PAIRs with a rigid body do not run in ccx 2.20 (node-to-surface: too many cutbacks at the second "
+      "increment; surface-to-surface: increments of ~1e-8 s). A ring node only meets the face of its own "
+      "neighbour (ringcrush: every face against every ring)",
+      gaps.size()));
+  out.approximations.push_back(fmt::format(
+      "contact pairs (node-to-surface penalty, pressure/overclosure = scale * E / h = {:.6g} Pa/m): each ring / "
+      "its neighbour (free and welded joints), inner wall near the bottom / near the top of each ring (within 60 "
+      "deg); ringcrush pairs every ring with every ring and smooths its master segments (no ccx counterpart). "
+      "These pairs are not verified in ccx: they only close late in the crush, where ccx's implicit dynamics with "
+      "contact stalls",
+      penalty_slope));
   out.approximations.push_back(
       solver.scheme == fe::DynamicScheme::Hht
           ? fmt::format("time integration: ccx *DYNAMIC (implicit alpha method, ALPHA = {:g}) with the scene's "
@@ -178,12 +237,11 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
                    "nodes n (z = 0), n + {} (z = s), n + {} (z = s/2)\n",
                    ring_plane_nodes, slab.plane_nodes, 2 * slab.plane_nodes);
   write_slab_nodes(o, slab, xy);
-  for (const auto& b : bodies)
-    if (b.rigid) {
-      const auto& f = b.strip.nodes[static_cast<std::size_t>(b.strip.reference)];
-      o << fmt::format("{}, {}, {}, {}\n{}, {}, {}, {}\n", b.ref, num(f.x()), num(f.y()), num(0.5 * slab.thickness),
-                       b.rot, num(f.x()), num(f.y()), num(0.5 * slab.thickness));
-    }
+  for (const auto& b : bodies) {
+    const auto& f = b.strip.nodes[static_cast<std::size_t>(b.strip.reference)];
+    o << fmt::format("{}, {}, {}, {}\n", b.ref, num(f.x()), num(f.y()), num(0.5 * slab.thickness));
+    if (b.rigid) o << fmt::format("{}, {}, {}, {}\n", b.rot, num(f.x()), num(f.y()), num(0.5 * slab.thickness));
+  }
   write_bricks(o, "RINGS", type, slab, mesh.elements, 1);
   for (const auto& b : bodies) {
     std::vector<std::array<int, 8>> es(all_elements.begin() + (b.elem0 - 1),
@@ -192,11 +250,16 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   }
   for (const auto& b : bodies)
     if (b.rigid) o << fmt::format("*ELEMENT, TYPE=MASS, ELSET={}_MASS\n{}, {}\n", b.name, b.mass_elem, b.ref);
+  o << "** rigid faces: one GAPUNI per facing ring node to the body's reference node (see *GAP below)\n";
+  for (const auto& g : gaps)
+    o << fmt::format("*ELEMENT, TYPE=GAPUNI, ELSET=GAP{}\n{}, {}, {}\n", g.id, g.id, g.node,
+                     bodies[static_cast<std::size_t>(g.body)].ref);
 
   for (const auto& b : bodies) {
     o << fmt::format("*NSET, NSET={}_NODES\n", b.name);
     write_ids(o, slab.through(plane_ids(b.node0, b.strip.nodes.size())));
-    if (b.rigid) o << fmt::format("*NSET, NSET={}_REF\n{}\n*NSET, NSET={}_ROT\n{}\n", b.name, b.ref, b.name, b.rot);
+    o << fmt::format("*NSET, NSET={}_REF\n{}\n", b.name, b.ref);
+    if (b.rigid) o << fmt::format("*NSET, NSET={}_ROT\n{}\n", b.name, b.rot);
   }
   std::vector<int> fixed;
   for (int dof : topo.fixed_dofs)
@@ -229,11 +292,6 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
     o << fmt::format("*SURFACE, NAME=RING{}_INNER_TOP, TYPE=ELEMENT\n", i + 1);
     for (int e : top) o << e << ", " << brick_face(3) << "\n";
   }
-  for (const auto& b : bodies) {
-    o << fmt::format("*SURFACE, NAME={}_FACE, TYPE=ELEMENT\n{}, {}\n", b.name, b.name, brick_face(1));
-    if (b.name.rfind("PLATE", 0) == 0)
-      o << fmt::format("*SURFACE, NAME={}_BACK, TYPE=ELEMENT\n{}, {}\n", b.name, b.name, brick_face(3));
-  }
 
   o << "*MATERIAL, NAME=RING_MATERIAL\n*ELASTIC\n" << num(mat.youngs_modulus_pa) << ", " << num(mat.poisson_ratio)
     << "\n*PLASTIC\n";
@@ -249,6 +307,10 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
       o << fmt::format("*MASS, ELSET={}_MASS\n{}\n*RIGID BODY, NSET={}_NODES, REF NODE={}, ROT NODE={}\n", b.name,
                        num(b.mass_kg), b.name, b.ref, b.rot);
 
+  o << "** gap: clearance, direction (ring node toward the body), -, stiffness\n";
+  for (const auto& g : gaps)
+    o << fmt::format("*GAP, ELSET=GAP{}\n{}, 0, {}, 0, , {}\n", g.id, num(g.clearance), num(g.normal_y),
+                     num(g.stiffness));
   o << "** frictionless penalty contact, pressure = K * overclosure (K = scale * E / h)\n";
   o << "*SURFACE INTERACTION, NAME=PENALTY\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n" << num(penalty_slope)
     << "\n";
@@ -256,16 +318,8 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
     o << "*CONTACT PAIR, INTERACTION=PENALTY, TYPE=NODE TO SURFACE\n" << slave << ", " << master << "\n";
     out.contact_pairs.push_back(slave + " / " + master);
   };
-  pair("RING1_OUTER", "IMPACTOR_FACE");
-  for (int k = 0; k + 1 < in.rings; ++k) {
-    if (in.joints == fe::JointKind::Plates) {
-      pair(fmt::format("RING{}_OUTER", k + 1), fmt::format("PLATE{}_FACE", k + 1));
-      pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("PLATE{}_BACK", k + 1));
-    } else {
-      pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("RING{}_OUTER", k + 1));
-    }
-  }
-  if (in.fixed_target) pair(fmt::format("RING{}_OUTER", in.rings), "TARGET_FACE");
+  if (in.joints != fe::JointKind::Plates)
+    for (int k = 0; k + 1 < in.rings; ++k) pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("RING{}_OUTER", k + 1));
   if (in.contact.self_contact)
     for (int i = 0; i < in.rings; ++i)
       pair(fmt::format("RING{}_INNER_BOTTOM", i + 1), fmt::format("RING{}_INNER_TOP", i + 1));
@@ -273,7 +327,7 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nRING_FRONT, 3, 3\n";
   for (const auto& b : bodies) {
     if (b.rigid) o << fmt::format("{}_REF, 1, 1\n{}_REF, 3, 3\n{}_ROT, 1, 3\n", b.name, b.name, b.name);
-    else o << fmt::format("{}_NODES, 1, 3\n", b.name);
+    else o << fmt::format("{}_NODES, 1, 3\n{}_REF, 1, 3\n", b.name, b.name);
   }
   o << "** the impactor (every node of the body and its reference node) moves toward the chain\n";
   o << "*INITIAL CONDITIONS, TYPE=VELOCITY\n"

@@ -64,6 +64,7 @@ struct CalculixDeck {
   double impactor_mass_kg = 0;              // the deck's (physical / load_factor)
   double impactor_velocity_m_s = 0;         // physical, toward the chain
   std::vector<std::string> contact_pairs;   // "SLAVE / MASTER"
+  int gap_elements = 0;                     // GAPUNI: rigid faces (impactor, plates, target)
 };
 
 // Throws std::invalid_argument naming the scene feature the deck cannot carry (the same
