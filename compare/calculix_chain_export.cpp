@@ -145,25 +145,32 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   // layer's weight: 1/6, 2/3, 1/6 at a corner's front, middle, back nodes, 1/2, 1/2 at a
   // midside's) × scale·E·s/h. A node shares the plane's rigid motion exactly (frictionless).
   struct Gap {
-    int node, body, id;
+    int node, other, id;  // brick node ids: the ring node, and the body's reference node or the facing node
     double clearance, normal_y, stiffness;
   };
   std::vector<Gap> gaps;
+  // The brick nodes of 2-D node n with their share of the node's contact area (the layer
+  // weights of a quadratic edge through the slab: 1/6, 2/3, 1/6; a linear one: 1/2, 1/2).
+  auto layers = [&](int n) {
+    return slab.corner[static_cast<std::size_t>(n - 1)]
+               ? std::vector<std::pair<int, double>>{{slab.front(n), 1.0 / 6}, {slab.middle(n), 2.0 / 3},
+                                                     {slab.back(n), 1.0 / 6}}
+               : std::vector<std::pair<int, double>>{{slab.front(n), 0.5}, {slab.back(n), 0.5}};
+  };
+  auto global = [&](int ring, int local) {
+    return topo.ring_node[static_cast<std::size_t>(ring)][static_cast<std::size_t>(local)] + 1;
+  };
   auto face_gaps = [&](int ring, int body, double face_y, double normal_y) {
     // normal_y: from the ring toward the body (+1: the body is above the ring)
     const double yc = mesh.ring_centre_y[static_cast<std::size_t>(ring)];
     for (std::size_t j = 0; j < topo.ring.outer_nodes.size(); ++j) {
-      const int n = topo.ring_node[static_cast<std::size_t>(ring)][static_cast<std::size_t>(topo.ring.outer_nodes[j])] + 1;
+      const int n = global(ring, topo.ring.outer_nodes[j]);
       const double y = xy[static_cast<std::size_t>(n - 1)].y();
       if ((y - yc) * normal_y < 0) continue;  // the half of the ring facing the body
       const double k = penalty_slope * topo.ring.outer_weight[j] * slab.thickness;
       const double clearance = std::max(0.0, (face_y - y) * normal_y);
-      const bool corner = slab.corner[static_cast<std::size_t>(n - 1)];
-      const std::vector<std::pair<int, double>> layers =
-          corner ? std::vector<std::pair<int, double>>{{slab.front(n), 1.0 / 6}, {slab.middle(n), 2.0 / 3},
-                                                       {slab.back(n), 1.0 / 6}}
-                 : std::vector<std::pair<int, double>>{{slab.front(n), 0.5}, {slab.back(n), 0.5}};
-      for (const auto& [id, share] : layers) gaps.push_back({id, body, 0, clearance, normal_y, k * share});
+      for (const auto& [id, share] : layers(n))
+        gaps.push_back({id, bodies[static_cast<std::size_t>(body)].ref, 0, clearance, normal_y, k * share});
     }
   };
   face_gaps(0, 0, r_out, 1.0);
@@ -179,6 +186,51 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
       face_gaps(k + 1, body, top_face - 2 * topo.plate_half_thickness, 1.0);
     }
   }
+  // Ring↔ring (free and welded joints) and inner wall (lock-up) as node-to-node gaps between
+  // mirror nodes: the node at reference angle φ (φ = 0 at the bottom, ring_mesh.cpp) and the
+  // node at π − φ face each other across the joint plane (of neighbours) or across the ring's
+  // horizontal diameter (inner wall), at the same x. Within π/3 of the joint / of the flats,
+  // as ringcrush pairs (ContactInput::self_contact_min_separation_rad). Valid while the two
+  // nodes slide little along each other, which the symmetry of the two sides keeps small;
+  // ccx's *CONTACT PAIRs would slide freely but stall the integration as soon as they close
+  // (node-to-surface at a free joint's initial touch: "too many cutbacks" at 0.5 us).
+  const double pi = std::numbers::pi;
+  auto mirror = [&](const std::vector<int>& nodes, std::size_t j) -> std::ptrdiff_t {
+    const double phi = topo.ring.node_angle[static_cast<std::size_t>(nodes[j])];
+    double m = pi - phi;
+    if (m < 0) m += 2 * pi;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (std::abs(topo.ring.node_angle[static_cast<std::size_t>(nodes[i])] - m) < 1e-9) return static_cast<std::ptrdiff_t>(i);
+    return -1;
+  };
+  auto near_bottom = [&](int local) {
+    const double phi = topo.ring.node_angle[static_cast<std::size_t>(local)];
+    return std::min(phi, 2 * pi - phi) < pi / 3;
+  };
+  auto pair_gaps = [&](int ring_a, int ring_b, const std::vector<int>& nodes, const std::vector<double>& weight) {
+    // ring_a's nodes near its bottom against their mirrors in ring_b (ring_b's top), direction −y... +y for the
+    // inner wall (ring_a == ring_b: the bottom node looks up at the top node)
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      if (!near_bottom(nodes[j])) continue;
+      const std::ptrdiff_t m = mirror(nodes, j);
+      if (m < 0) continue;
+      const int a = global(ring_a, nodes[j]), b = global(ring_b, nodes[static_cast<std::size_t>(m)]);
+      if (a == b) continue;  // a welded joint's shared node
+      const double dy = xy[static_cast<std::size_t>(b - 1)].y() - xy[static_cast<std::size_t>(a - 1)].y();
+      const double k = penalty_slope * weight[j] * slab.thickness;
+      const auto la = layers(a), lb = layers(b);
+      for (std::size_t l = 0; l < la.size() && l < lb.size(); ++l)
+        gaps.push_back({la[l].first, lb[l].first, 0, std::abs(dy), dy < 0 ? -1.0 : 1.0, k * la[l].second});
+    }
+  };
+  const std::size_t before_rings = gaps.size();
+  if (in.joints != fe::JointKind::Plates)
+    for (int k = 0; k + 1 < in.rings; ++k) pair_gaps(k, k + 1, topo.ring.outer_nodes, topo.ring.outer_weight);
+  const std::size_t before_inner = gaps.size();
+  if (in.contact.self_contact)
+    for (int i = 0; i < in.rings; ++i) pair_gaps(i, i, topo.ring.inner_nodes, topo.ring.inner_weight);
+  out.ring_ring_gaps = static_cast<int>(before_inner - before_rings);
+  out.inner_wall_gaps = static_cast<int>(gaps.size() - before_inner);
   for (auto& g : gaps) g.id = next_elem++;
   out.elements = next_elem - 1;
   out.gap_elements = static_cast<int>(gaps.size());
@@ -203,20 +255,16 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
         "welded joints: ringcrush merges the touching outer nodes of neighbouring rings into one node; the deck "
         "keeps that node (through the slab), no *EQUATION needed");
   out.approximations.push_back(fmt::format(
-      "rigid faces (impactor on ring 1, plates on their two rings, target under the last ring): {} GAPUNI "
-      "elements, one per brick node of the facing half ring to the body's reference node, clearance = distance to "
-      "the plane, stiffness = the node's share of ringcrush's penalty (scale * E * w * s / h); ccx's meshed "
-      "*CONTACT PAIRs with a rigid body do not run in ccx 2.20 (node-to-surface: too many cutbacks at the second "
-      "increment; surface-to-surface: increments of ~1e-8 s). A ring node only meets the face of its own "
-      "neighbour (ringcrush: every face against every ring)",
-      gaps.size()));
-  out.approximations.push_back(fmt::format(
-      "contact pairs (node-to-surface penalty, pressure/overclosure = scale * E / h = {:.6g} Pa/m): each ring / "
-      "its neighbour (free and welded joints), inner wall near the bottom / near the top of each ring (within 60 "
-      "deg); ringcrush pairs every ring with every ring and smooths its master segments (no ccx counterpart). "
-      "These pairs are not verified in ccx: they only close late in the crush, where ccx's implicit dynamics with "
-      "contact stalls",
-      penalty_slope));
+      "contact: all of it as GAPUNI elements (frictionless penalty, the node's share of ringcrush's "
+      "scale * E * w * s / h with scale * E / h = {:.6g} Pa/m): rigid faces (impactor on ring 1, plates on their "
+      "two rings, target under the last ring) one per brick node of the facing half ring to the body's reference "
+      "node, clearance = distance to the plane; ring to ring ({}) and inner wall ({}) between mirror nodes within "
+      "60 deg of the joint / of the flats, valid while they slide little along each other. ccx 2.20's *CONTACT "
+      "PAIRs stall the *DYNAMIC step as soon as they close (node-to-surface: its impact rules halve the increment "
+      "to 1e-10 s, \"too many cutbacks\", at the 2nd increment; surface-to-surface: increments of ~1e-8 s). "
+      "ringcrush meets every face and ring with every ring and smooths its master segments (no counterpart); the "
+      "element surfaces RINGi_OUTER, RINGi_INNER_BOTTOM/TOP are in the deck for a user's own *CONTACT PAIR",
+      penalty_slope, out.ring_ring_gaps, out.inner_wall_gaps));
   out.approximations.push_back(
       solver.scheme == fe::DynamicScheme::Hht
           ? fmt::format("time integration: ccx *DYNAMIC (implicit alpha method, ALPHA = {:g}) with the scene's "
@@ -252,8 +300,7 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
     if (b.rigid) o << fmt::format("*ELEMENT, TYPE=MASS, ELSET={}_MASS\n{}, {}\n", b.name, b.mass_elem, b.ref);
   o << "** rigid faces: one GAPUNI per facing ring node to the body's reference node (see *GAP below)\n";
   for (const auto& g : gaps)
-    o << fmt::format("*ELEMENT, TYPE=GAPUNI, ELSET=GAP{}\n{}, {}, {}\n", g.id, g.id, g.node,
-                     bodies[static_cast<std::size_t>(g.body)].ref);
+    o << fmt::format("*ELEMENT, TYPE=GAPUNI, ELSET=GAP{}\n{}, {}, {}\n", g.id, g.id, g.node, g.other);
 
   for (const auto& b : bodies) {
     o << fmt::format("*NSET, NSET={}_NODES\n", b.name);
@@ -276,7 +323,6 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   // by the reference angle φ of the face's middle node into the part near the ring's top
   // (φ within π/3 of π) and near its bottom (within π/3 of 0), as the static deck; ringcrush
   // never pairs inner points closer than π/3 of arc.
-  const double pi = std::numbers::pi;
   const int through = in.mesh.elements_through;
   for (int i = 0; i < in.rings; ++i) {
     o << fmt::format("*SURFACE, NAME=RING{}_OUTER, TYPE=ELEMENT\n", i + 1);
@@ -311,19 +357,6 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   for (const auto& g : gaps)
     o << fmt::format("*GAP, ELSET=GAP{}\n{}, 0, {}, 0, , {}\n", g.id, num(g.clearance), num(g.normal_y),
                      num(g.stiffness));
-  o << "** frictionless penalty contact, pressure = K * overclosure (K = scale * E / h)\n";
-  o << "*SURFACE INTERACTION, NAME=PENALTY\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n" << num(penalty_slope)
-    << "\n";
-  auto pair = [&](const std::string& slave, const std::string& master) {
-    o << "*CONTACT PAIR, INTERACTION=PENALTY, TYPE=NODE TO SURFACE\n" << slave << ", " << master << "\n";
-    out.contact_pairs.push_back(slave + " / " + master);
-  };
-  if (in.joints != fe::JointKind::Plates)
-    for (int k = 0; k + 1 < in.rings; ++k) pair(fmt::format("RING{}_OUTER", k + 2), fmt::format("RING{}_OUTER", k + 1));
-  if (in.contact.self_contact)
-    for (int i = 0; i < in.rings; ++i)
-      pair(fmt::format("RING{}_INNER_BOTTOM", i + 1), fmt::format("RING{}_INNER_TOP", i + 1));
-
   o << "*BOUNDARY\nRING_FIXED_X, 1, 1\nRING_FRONT, 3, 3\n";
   for (const auto& b : bodies) {
     if (b.rigid) o << fmt::format("{}_REF, 1, 1\n{}_REF, 3, 3\n{}_ROT, 1, 3\n", b.name, b.name, b.name);
@@ -356,8 +389,9 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
                    out.nodes, out.elements, out.ring_elements, type, in.rings, in.mesh.elements_around,
                    in.mesh.elements_through, num(mat.density_kg_m3), num(in.impactor_mass_kg),
                    num(in.impactor_velocity_m_s), out.impactor_mass_kg);
-  r << "Contact pairs (slave / master):\n";
-  for (const auto& p : out.contact_pairs) r << "  " << p << "\n";
+  r << fmt::format("Contact: {} GAPUNI elements ({} rigid faces, {} ring to ring, {} inner wall)\n", out.gap_elements,
+                   out.gap_elements - out.ring_ring_gaps - out.inner_wall_gaps, out.ring_ring_gaps,
+                   out.inner_wall_gaps);
   r << "Approximations and what is not mapped:\n";
   for (const auto& a : out.approximations) r << "  - " << a << "\n";
   out.readme = r.str();

@@ -226,4 +226,28 @@ std::vector<CcxTotalForce> parse_ccx_total_forces(const std::string& text, const
   return out;
 }
 
+std::vector<CcxNodeVector> parse_ccx_node_vectors(const std::string& text, const std::string& quantity,
+                                                  const std::string& nset) {
+  std::vector<CcxNodeVector> out;
+  std::string upper = nset;
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+  const std::string head = " " + quantity + " (vx,vy,vz) for set " + upper + " and time";
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto at = line.find(head);
+    if (at == std::string::npos) continue;
+    CcxNodeVector v{};
+    std::istringstream t(line.substr(at + head.size()));
+    if (!(t >> v.time)) throw std::runtime_error("ccx .dat: no time after \"" + head + "\"");
+    std::string values;
+    while (std::getline(in, values) && values.find_first_not_of(" \t\r") == std::string::npos) {
+    }
+    std::istringstream r(values);
+    int node = 0;
+    if (!(r >> node >> v.x >> v.y >> v.z)) throw std::runtime_error("ccx .dat: no node values after \"" + line + "\"");
+    out.push_back(v);
+  }
+  return out;
+}
+
 }  // namespace ringcrush::compare

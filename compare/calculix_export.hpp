@@ -63,8 +63,8 @@ struct CalculixDeck {
   std::string ring_element_type;            // C3D20R (reduced) or C3D20
   double impactor_mass_kg = 0;              // the deck's (physical / load_factor)
   double impactor_velocity_m_s = 0;         // physical, toward the chain
-  std::vector<std::string> contact_pairs;   // "SLAVE / MASTER"
-  int gap_elements = 0;                     // GAPUNI: rigid faces (impactor, plates, target)
+  int gap_elements = 0;                     // all GAPUNI elements (contact, see calculix_chain_export.cpp)
+  int ring_ring_gaps = 0, inner_wall_gaps = 0;  // of which ring↔ring and inner wall
 };
 
 // Throws std::invalid_argument naming the scene feature the deck cannot carry (the same
@@ -83,5 +83,14 @@ struct CcxTotalForce {
   double time, fx, fy;
 };
 std::vector<CcxTotalForce> parse_ccx_total_forces(const std::string& dat_text, const std::string& nset);
+
+// The vector of the first node of set `nset` at each time printed in a ccx .dat file, for
+// `quantity` "displacements" or "velocities" ("<quantity> (vx,vy,vz) for set NSET and time T"
+// blocks of *NODE PRINT, U or V); the dynamic deck prints the impactor's at IMPACTOR_REF.
+struct CcxNodeVector {
+  double time, x, y, z;
+};
+std::vector<CcxNodeVector> parse_ccx_node_vectors(const std::string& dat_text, const std::string& quantity,
+                                                  const std::string& nset);
 
 }  // namespace ringcrush::compare

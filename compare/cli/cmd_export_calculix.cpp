@@ -45,7 +45,8 @@ void run_export(const ExportOptions& o) {
                "deck's\n",
                s.name, deck.nodes, deck.elements, deck.ring_elements, deck.ring_element_type,
                deck.driven_reference_node, deck.impactor_mass_kg, deck.impactor_velocity_m_s, deck.load_factor);
-    for (const auto& p : deck.contact_pairs) fmt::print("  contact pair: {}\n", p);
+    fmt::print("  contact: {} GAPUNI elements ({} ring to ring, {} inner wall, the rest rigid faces)\n",
+               deck.gap_elements, deck.ring_ring_gaps, deck.inner_wall_gaps);
   } else {
     fmt::print("export-calculix {}: {} nodes, {} elements ({} ring); driven plate reference node {}; ring load = {:g} "
                "x the plate's reaction\n",

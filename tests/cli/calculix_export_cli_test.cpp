@@ -217,11 +217,7 @@ TEST(CalculixExport, BadInputExitsTwoNamingTheProblem) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("missing.toml"), std::string::npos) << r.output;
 
-  // A dynamic scene: named as not mapped (compare/calculix_export.hpp says why).
-  r = run_cli("export-calculix " + (fs::path(RINGCRUSH_SOURCE_DIR) / "data/scenes/thesis_dynamic.toml").string() +
-              " -o " + (dir / "out").string());
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("dynamic analysis"), std::string::npos) << r.output;
+  // (Dynamic scenes are exported: tests/cli/calculix_dynamic_export_test.cpp.)
 
   // A static chain: the static FE (and so the deck) crushes one ring.
   const fs::path chain =
