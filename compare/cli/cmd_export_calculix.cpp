@@ -6,8 +6,10 @@
 //
 // Writes DIR/<scene>.inp and DIR/README.txt (what is mapped, what is approximated) into a
 // results directory that appears complete or not at all. A correct run prints the deck's
-// node and element counts and the directory. A scene the deck cannot carry (dynamic
-// analyses, chains, plane strain, friction) exits 2 naming the feature.
+// node and element counts and the directory; a dynamic scene (ring chain) is written as a
+// *DYNAMIC deck of 20-node bricks and the run says what it holds (rigid bodies, mass,
+// velocity, contact gaps). A scene the deck cannot carry (a static chain, plane strain,
+// friction) exits 2 naming the feature.
 #include <fmt/format.h>
 
 #include <fstream>
@@ -59,7 +61,7 @@ void run_export(const ExportOptions& o) {
 void add_export_command(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand("export-calculix",
-                                 "Write a static scene as a CalculiX (ccx) deck on ringcrush's own mesh");
+                                 "Write a scene (static ring or dynamic chain) as a CalculiX (ccx) deck on ringcrush's own mesh");
   cmd->add_option("scene", o->scene, "Scene file (.toml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "Output directory (written completely or not at all)")->required();
   cmd->add_flag("--full-width", o->full_width,
