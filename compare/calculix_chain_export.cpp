@@ -376,7 +376,8 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   o << fmt::format("*DYNAMIC, ALPHA={}\n{}, {}, {}, {}\n", num(s.fe.hht_alpha), num(solver.initial_step_s),
                    num(solver.end_time_s), num(solver.min_step_s), num(solver.max_step_s));
   o << "*NODE PRINT, NSET=IMPACTOR_REF\nU, V\n";
-  if (in.fixed_target) o << "*NODE PRINT, NSET=TARGET_NODES, TOTALS=ONLY\nRF\n";
+  // The target's gaps end on its reference node: its reaction is the chain's force on the target.
+  if (in.fixed_target) o << "*NODE PRINT, NSET=TARGET_REF\nRF\n";
   o << "*NODE FILE, FREQUENCY=100\nU, V\n*EL FILE, FREQUENCY=100\nS, PEEQ\n*END STEP\n";
   out.deck = o.str();
 
@@ -385,7 +386,7 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   r << fmt::format("Run:    ccx -i {}        (writes {}.dat, {}.frd)\n", s.name, s.name, s.name);
   r << fmt::format("Output: impactor reference node U, V (set IMPACTOR_REF, physical){}; forces of the chain = {:.6g} x "
                    "the deck's.\n\n",
-                   in.fixed_target ? ", target reaction (set TARGET_NODES, totals)" : "", out.load_factor);
+                   in.fixed_target ? ", target reaction RF (set TARGET_REF)" : "", out.load_factor);
   r << fmt::format("Mapped: {} nodes, {} elements ({} ring {} on the ringcrush chain mesh, {} ring(s) x {} per half "
                    "ring x {} through); *DENSITY {} kg/m^3; impactor {} kg at {} m/s (physical; {:.6g} kg in the deck)\n",
                    out.nodes, out.elements, out.ring_elements, type, in.rings, in.mesh.elements_around,
