@@ -45,6 +45,11 @@ enum class CalculixSection {
   FullWidth,        // section thickness = ring width: ccx's 3-D slab of the real ring
 };
 
+enum class CalculixPlates {
+  Strips,       // CPS8 strips every node of which carries the plate's motion (default)
+  RigidBodies,  // the whole deck in 20-node bricks, each plate a *RIGID BODY driven at its reference node
+};
+
 struct CalculixDeck {
   std::string deck;    // the .inp text
   std::string readme;  // README.txt: the command, what is mapped, what is approximated
@@ -52,6 +57,7 @@ struct CalculixDeck {
   int elements = 0;    // all elements (ring + plates)
   int ring_nodes = 0, ring_elements = 0;
   int driven_reference_node = -1;  // 1-based node id of the driven plate's reference node
+  std::string reaction_set;        // static: the node set whose total RF is the plate's load
   double symmetry_factor = 1.0;    // 2 for a half model
   double section_thickness_m = 0;  // the *SOLID SECTION thickness written
   // Whole-ring load = load_factor × the driven plate's total reaction printed by ccx
@@ -70,7 +76,8 @@ struct CalculixDeck {
 // Throws std::invalid_argument naming the scene feature the deck cannot carry (the same
 // refusals as `ringcrush fe`: plane strain, friction, a static chain). A dynamic scene is
 // written by calculix_chain_deck.
-CalculixDeck calculix_deck(const Scene& scene, CalculixSection section = CalculixSection::PlaneStressSlab);
+CalculixDeck calculix_deck(const Scene& scene, CalculixSection section = CalculixSection::PlaneStressSlab,
+                           CalculixPlates plates = CalculixPlates::Strips);
 
 // A dynamic scene (ring chain, welded / free / plated joints) as a ccx *DYNAMIC deck of 20-node
 // bricks; the same refusals as `ringcrush fe` on the scene. nodes / elements count the bricks

@@ -25,6 +25,7 @@ struct ExportOptions {
   std::string scene;
   std::string output;
   bool full_width = false;
+  bool rigid_plates = false;
 };
 
 void write_text(const std::filesystem::path& p, const std::string& text) {
@@ -36,7 +37,8 @@ void write_text(const std::filesystem::path& p, const std::string& text) {
 void run_export(const ExportOptions& o) {
   const Scene s = load_scene(o.scene);
   const CalculixDeck deck =
-      calculix_deck(s, o.full_width ? CalculixSection::FullWidth : CalculixSection::PlaneStressSlab);
+      calculix_deck(s, o.full_width ? CalculixSection::FullWidth : CalculixSection::PlaneStressSlab,
+                    o.rigid_plates ? CalculixPlates::RigidBodies : CalculixPlates::Strips);
   ResultsDir out(o.output);
   write_text(out.file(s.name + ".inp"), deck.deck);
   write_text(out.file("README.txt"), deck.readme);
@@ -67,6 +69,9 @@ void add_export_command(CLI::App& app) {
   cmd->add_flag("--full-width", o->full_width,
                 "Section thickness = ring width (ccx's 3-D slab, near plane strain) instead of the plane-stress thin "
                 "slab");
+  cmd->add_flag("--rigid-plates", o->rigid_plates,
+                "Static scenes: plates as *RIGID BODY strips, the deck in 20-node bricks (load at the driven "
+                "reference node)");
   cmd->callback([o] { run_export(*o); });
 }
 
