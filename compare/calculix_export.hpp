@@ -22,6 +22,8 @@
 // plane-stress model of the thesis (§3.6.1) and of ringcrush is therefore written as a thin
 // slab, s = t/10, and the ring's load is L/s times the slab's (CalculixDeck::load_factor);
 // CalculixSection::FullWidth writes s = L instead (the 3-D wide-ring response).
+// CalculixPlates::RigidBodies writes the plates as *RIGID BODY strips, the deck in 20-node
+// bricks (calculix_slab.hpp): ccx prints no reaction at a rigid body of CPS8.
 //
 // Dynamic scenes (a chain hit by an impactor, thesis §3.5, §4.2) go to calculix_chain_deck
 // (compare/calculix_chain_export.cpp): ccx 2.20 cannot carry them as CPS8 (a rigid impactor of
@@ -64,7 +66,7 @@ struct CalculixDeck {
   // (symmetry_factor × ring width / section thickness).
   double load_factor = 1.0;
   std::vector<std::string> approximations;  // also listed in the README
-  // Dynamic (chain) decks only:
+  // Brick decks (dynamic chains, static --rigid-plates):
   bool dynamic = false;
   std::string ring_element_type;            // C3D20R (reduced) or C3D20
   double impactor_mass_kg = 0;              // the deck's (physical / load_factor)
