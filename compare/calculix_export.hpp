@@ -22,13 +22,17 @@
 // plane-stress model of the thesis (§3.6.1) and of ringcrush is therefore written as a thin
 // slab, s = t/10, and the ring's load is L/s times the slab's (CalculixDeck::load_factor);
 // CalculixSection::FullWidth writes s = L instead (the 3-D wide-ring response).
+// CalculixPlates::RigidBodies writes the plates as *RIGID BODY strips, the deck in 20-node
+// bricks (calculix_slab.hpp): ccx prints no reaction at a rigid body of CPS8.
 //
-// Dynamic scenes are refused, naming why: tried with ccx 2.20, a rigid impactor of 2-D
-// elements (*RIGID BODY, or *EQUATION ties to a *MASS node) makes the *DYNAMIC step diverge at
-// its second increment, and an initial velocity on CPS8 nodes is reported but never moves
-// them (a free CPS8 element at 30 m/s keeps zero displacement over 10 µs; a C3D8 moves
-// 0.3 mm). A chain deck would need its own C3D20 slab. The deck writer of that attempt is in
-// the branch history (commit a1da9d9).
+// Dynamic scenes (a chain hit by an impactor, thesis §3.5, §4.2) go to calculix_chain_deck
+// (compare/calculix_chain_export.cpp): ccx 2.20 cannot carry them as CPS8 (a rigid impactor of
+// 2-D elements, *RIGID BODY or *EQUATION-tied to a *MASS node, made *DYNAMIC diverge at its
+// second increment, and an *INITIAL CONDITIONS velocity on CPS8 nodes is reported but never
+// moves them: ccx expands them to 3-D and the velocity stays on the 2-D nodes), so the chain is
+// written as one layer of C3D20(R) bricks through the same thin slab (compare/calculix_slab.hpp),
+// u_z = 0 on one face, the impactor a *RIGID BODY strip of bricks with its mass on the reference
+// node and the impact velocity on every node of the body.
 #pragma once
 
 #include <string>
@@ -43,6 +47,11 @@ enum class CalculixSection {
   FullWidth,        // section thickness = ring width: ccx's 3-D slab of the real ring
 };
 
+enum class CalculixPlates {
+  Strips,       // CPS8 strips every node of which carries the plate's motion (default)
+  RigidBodies,  // the whole deck in 20-node bricks, each plate a *RIGID BODY driven at its reference node
+};
+
 struct CalculixDeck {
   std::string deck;    // the .inp text
   std::string readme;  // README.txt: the command, what is mapped, what is approximated
@@ -50,17 +59,32 @@ struct CalculixDeck {
   int elements = 0;    // all elements (ring + plates)
   int ring_nodes = 0, ring_elements = 0;
   int driven_reference_node = -1;  // 1-based node id of the driven plate's reference node
+  std::string reaction_set;        // static: the node set whose total RF is the plate's load
   double symmetry_factor = 1.0;    // 2 for a half model
   double section_thickness_m = 0;  // the *SOLID SECTION thickness written
   // Whole-ring load = load_factor × the driven plate's total reaction printed by ccx
   // (symmetry_factor × ring width / section thickness).
   double load_factor = 1.0;
   std::vector<std::string> approximations;  // also listed in the README
+  // Brick decks (dynamic chains, static --rigid-plates):
+  bool dynamic = false;
+  std::string ring_element_type;            // C3D20R (reduced) or C3D20
+  double impactor_mass_kg = 0;              // the deck's (physical / load_factor)
+  double impactor_velocity_m_s = 0;         // physical, toward the chain
+  int gap_elements = 0;                     // all GAPUNI elements (contact, see calculix_chain_export.cpp)
+  int ring_ring_gaps = 0, inner_wall_gaps = 0;  // of which ring↔ring and inner wall
 };
 
 // Throws std::invalid_argument naming the scene feature the deck cannot carry (the same
-// refusals as `ringcrush fe`: plane strain, friction, a static chain; and dynamic scenes).
-CalculixDeck calculix_deck(const Scene& scene, CalculixSection section = CalculixSection::PlaneStressSlab);
+// refusals as `ringcrush fe`: plane strain, friction, a static chain). A dynamic scene is
+// written by calculix_chain_deck.
+CalculixDeck calculix_deck(const Scene& scene, CalculixSection section = CalculixSection::PlaneStressSlab,
+                           CalculixPlates plates = CalculixPlates::Strips);
+
+// A dynamic scene (ring chain, welded / free / plated joints) as a ccx *DYNAMIC deck of 20-node
+// bricks; the same refusals as `ringcrush fe` on the scene. nodes / elements count the bricks
+// (ring elements = ringcrush's CPS8 count; ring nodes = 2 × 2-D nodes + corner nodes).
+CalculixDeck calculix_chain_deck(const Scene& scene, CalculixSection section = CalculixSection::PlaneStressSlab);
 
 // Total reaction force (fx, fy) of the node set `nset` at each time printed in a ccx .dat
 // file ("total force (fx,fy,fz) for set NSET and time T" blocks of *NODE PRINT, TOTALS=ONLY).
@@ -68,5 +92,14 @@ struct CcxTotalForce {
   double time, fx, fy;
 };
 std::vector<CcxTotalForce> parse_ccx_total_forces(const std::string& dat_text, const std::string& nset);
+
+// The vector of the first node of set `nset` at each time printed in a ccx .dat file, for
+// `quantity` "displacements" or "velocities" ("<quantity> (vx,vy,vz) for set NSET and time T"
+// blocks of *NODE PRINT, U or V); the dynamic deck prints the impactor's at IMPACTOR_REF.
+struct CcxNodeVector {
+  double time, x, y, z;
+};
+std::vector<CcxNodeVector> parse_ccx_node_vectors(const std::string& dat_text, const std::string& quantity,
+                                                  const std::string& nset);
 
 }  // namespace ringcrush::compare
