@@ -389,36 +389,34 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       const double M = moment_[j];
       const double My = std::min(M0_ + H_ * y[o + 5], cap_);
       const double over = std::abs(M) / My - 1.0;
+      const double rate = over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0;
       if (over > 0.0) {
-        const double rate = C_vp_ * std::pow(over, q_);
         phi[o + 4] = M > 0 ? rate : -rate;
         phi[o + 5] = rate;
         plastic_power += w * std::abs(M) * rate;
-        if (jac_) {
-          // ∂λ̇/∂M = C q over^(q−1) sign M / M_y with ∂M/∂p = k_θ g, ∂M/∂θp = −k_θ;
-          // ∂λ̇/∂ā = −C q over^(q−1) |M| H / M_y² while the cap is not reached.
-          const double dm = C_vp_ * q_ * std::pow(over, q_ - 1.0) / My;
-          const double sg = M > 0 ? 1.0 : -1.0;
-          const int km = (j + n_full_ - 1) % n_full_, kp = (j + 1) % n_full_;
-          const std::array<int, 3> nodes{km, j, kp};
-          for (int i = 0; i < 3; ++i) {
-            const double gx = k_theta_ * hinge_gx_[j][i], gy = k_theta_ * hinge_gy_[j][i];
-            ring_state_entry(r, o + 4, nodes[i], 0, -dm * gx, -dm * gy);
-            ring_state_entry(r, o + 5, nodes[i], 0, -dm * sg * gx, -dm * sg * gy);
-            // plastic power w |M| λ̇: ∂/∂M = w sign M (λ̇ + |M| ∂λ̇/∂|M|)
-            const double dp = w * sg * (rate + std::abs(M) * dm);
-            ring_state_entry(r, acc_base_, nodes[i], 0, -dp * gx, -dp * gy);
-          }
-          jac(o + 4, o + 4, dm * k_theta_);
-          jac(o + 5, o + 4, dm * sg * k_theta_);
-          jac(acc_base_, o + 4, w * sg * (rate + std::abs(M) * dm) * k_theta_);
-          if (M0_ + H_ * y[o + 5] < cap_) {
-            const double da = -dm * std::abs(M) * H_ / My;
-            jac(o + 4, o + 5, -sg * da);
-            jac(o + 5, o + 5, -da);
-            jac(acc_base_, o + 5, -w * std::abs(M) * da);
-          }
+      }
+      if (jac_) {
+        // ∂λ̇/∂M = C q over^(q−1) sign M / M_y with ∂M/∂p = k_θ g, ∂M/∂θp = −k_θ;
+        // ∂λ̇/∂ā = −C q over^(q−1) |M| H / M_y² while the cap is not reached. Elastic hinges
+        // keep these entries as zeros: the pattern then does not change with every yield.
+        const double dm = over > 0.0 ? C_vp_ * q_ * std::pow(over, q_ - 1.0) / My : 0.0;
+        const double sg = M > 0 ? 1.0 : -1.0;
+        const int km = (j + n_full_ - 1) % n_full_, kp = (j + 1) % n_full_;
+        const std::array<int, 3> nodes{km, j, kp};
+        const double dp = w * sg * (rate + std::abs(M) * dm);  // ∂(w |M| λ̇)/∂M
+        for (int i = 0; i < 3; ++i) {
+          const double gx = k_theta_ * hinge_gx_[j][i], gy = k_theta_ * hinge_gy_[j][i];
+          ring_state_entry(r, o + 4, nodes[i], 0, -dm * gx, -dm * gy);
+          ring_state_entry(r, o + 5, nodes[i], 0, -dm * sg * gx, -dm * sg * gy);
+          ring_state_entry(r, acc_base_, nodes[i], 0, -dp * gx, -dp * gy);
         }
+        jac(o + 4, o + 4, dm * k_theta_);
+        jac(o + 5, o + 4, dm * sg * k_theta_);
+        jac(acc_base_, o + 4, dp * k_theta_);
+        const double da = M0_ + H_ * y[o + 5] < cap_ ? -dm * std::abs(M) * H_ / My : 0.0;
+        jac(o + 4, o + 5, -sg * da);
+        jac(o + 5, o + 5, -da);
+        jac(acc_base_, o + 5, -w * std::abs(M) * da);
       }
       if (record) elastic += w * 0.5 * M * M / k_theta_;
     }
@@ -468,13 +466,18 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       const double pen = above ? y[o + 1] + 0.5 * t_ - face : face - (y[o + 1] - 0.5 * t_);
       if (pen <= -t_) continue;
       if (record) body_contacts_.push_back({r * n_ind_ + j, body});
-      if (pen <= 0.0) continue;
+      // Near pairs (within t) keep their Jacobian entries, as zeros while apart, so that the
+      // sparse pattern, and the direct solver's symbolic analysis, survive contact chatter.
+      if (pen <= 0.0 && !jac_) continue;
+      const bool touching = pen > 0.0;
       const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
       const double w = node_weight(j);
       double diss = 0.0;
-      const double f = w * contact_force(pen, rate, diss);
-      dissipation += w * diss;
-      contact_energy += w * 0.5 * k_n_ * pen * pen;
+      const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
+      if (touching) {
+        dissipation += w * diss;
+        contact_energy += w * 0.5 * k_n_ * pen * pen;
+      }
       const double fy = above ? -f : f;  // on the node
       phi[o + 3] += fy;
       const bool body_free = body >= 0 && !(body == 0 && in_.driven_impactor);
@@ -482,16 +485,17 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       if (jac_) {  // contact dissipation rate w (f − k p) ṗ, s = ±1 as below
         const double sg = above ? 1.0 : -1.0;
         double dp = 0.0, dr = 0.0;
-        diss_partials(pen, rate, dp, dr);
+        if (touching) diss_partials(pen, rate, dp, dr);
         jac(acc_base_ + 1, o + 1, -w * sg * dp);
         jac(acc_base_ + 1, o + 3, -w * sg * dr);
         if (body >= 0) jac(acc_base_ + 1, body_offset(body), w * sg * dp);
         if (body_free) jac(acc_base_ + 1, body_offset(body) + 1, w * sg * dr);
       }
-      if (jac_ && f > 0.0) {
+      if (jac_) {
         // p = s (y_node − y_body) + const, ṗ = s (v_node − v_body), s = ±1 (above/below);
         // node force −s f, body force s f.
-        const double fp = w * k_n_ * (1.0 + chi_ * rate), fr = w * k_n_ * pen * chi_;
+        const double fp = f > 0.0 ? w * k_n_ * (1.0 + chi_ * rate) : 0.0;
+        const double fr = f > 0.0 ? w * k_n_ * pen * chi_ : 0.0;
         if (body == 0 && in_.driven_impactor) {  // external power f · V of the driven plate
           const double v = prescribed_speed(t);
           jac(acc_base_ + 3, o + 1, -v * fp);
@@ -629,7 +633,8 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       const int a = best_a, b = (a + 1) % n_ind_;
       if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
       const double pen = t_ - best;
-      if (pen <= 0.0) continue;
+      if (pen <= 0.0 && !jac_) continue;  // near pairs keep their (zero) Jacobian entries
+      const bool touching = pen > 0.0;
       const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
       const double s = best_s;
       const double qx = (1 - s) * y[oa] + s * y[ob], qy = (1 - s) * y[oa + 1] + s * y[ob + 1];
@@ -639,9 +644,11 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
       const double w = node_weight(j);
       double diss = 0.0;
-      const double f = w * contact_force(pen, rate, diss);
-      dissipation += w * diss;
-      contact_energy += w * 0.5 * k_n_ * pen * pen;
+      const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
+      if (touching) {
+        dissipation += w * diss;
+        contact_energy += w * 0.5 * k_n_ * pen * pen;
+      }
       phi[os + 2] += f * nx;
       phi[os + 3] += f * ny;
       phi[oa + 2] -= (1 - s) * f * nx;
@@ -650,7 +657,7 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       phi[ob + 3] -= s * f * ny;
       if (jac_) {  // dissipation w (f − k p) ṗ; ∂p/∂p_m = ∂ṗ/∂v_m = −c_m n (c as below)
         double dp = 0.0, dr = 0.0;
-        diss_partials(pen, rate, dp, dr);
+        if (touching) diss_partials(pen, rate, dp, dr);
         const std::array<std::size_t, 3> off{os, oa, ob};
         const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
         for (int i = 0; i < 3; ++i) {
@@ -660,12 +667,13 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
           jac(acc_base_ + 1, off[i] + 3, w * cw[i] * ny * dr);
         }
       }
-      if (jac_ && f > 0.0) {
+      if (jac_) {
         // Forces (f n, −(1 − s) f n, −s f n) on (slave, a, b) with the gap d = |p − q| and
         // ṗ = −n·(v − v_q): ∂F_i/∂p_m = −c_i c_m f_p n nᵀ, ∂F_i/∂v_m = −c_i c_m f_v n nᵀ,
         // c = (1, −(1 − s), −s). s and n are held: their rates (the slide along the segment)
         // move the force sideways, a small term next to the normal stiffness.
-        const double fp = w * k_n_ * (1.0 + chi_ * rate), fr = w * k_n_ * pen * chi_;
+        const double fp = f > 0.0 ? w * k_n_ * (1.0 + chi_ * rate) : 0.0;
+        const double fr = f > 0.0 ? w * k_n_ * pen * chi_ : 0.0;
         const std::array<std::size_t, 3> off{os, oa, ob};
         const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
         const double nn[2][2] = {{nx * nx, nx * ny}, {ny * nx, ny * ny}};

@@ -13,6 +13,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -46,6 +47,9 @@ struct PolygonIdaSolver::Impl {
   SUNLinearSolver ls = nullptr;
   SUNMatrix jacobian = nullptr;  // direct solver: CSC iteration matrix
   std::vector<sunindextype> last_pointers, last_indices;  // its pattern at the last setup
+  std::vector<sunindextype> csc_pointers, csc_indices;    // pattern of the cached slot map
+  std::vector<std::int64_t> keys;                         // (row, col) of each triplet
+  std::vector<std::size_t> slot;                          // triplet → CSC position
   long symbolic = 0;
   std::vector<PolygonChain::Triplet> triplets;
   std::vector<Eigen::Triplet<double>> eigen_triplets;
@@ -75,14 +79,9 @@ struct PolygonIdaSolver::Impl {
     }
   }
 
-  // ∂F/∂y + cj ∂F/∂y′ (coloured differences) into `matrix`, compressed columns, duplicate
-  // entries (the cj μ diagonal over the difference quotients) summed.
+  // ∂F/∂y + cj ∂F/∂y′ into `matrix`, compressed columns, duplicate entries summed.
   void assemble(realtype t, N_Vector state, N_Vector state_rate, N_Vector r, realtype cj) {
-    if (jacobian_kind == PolygonJacobian::Analytic)
-      system->analytic_jacobian(t, cj, N_VGetArrayPointer(state), triplets);
-    else
-      system->sparse_jacobian(t, cj, N_VGetArrayPointer(state), N_VGetArrayPointer(state_rate),
-                              N_VGetArrayPointer(r), triplets);
+    triplets_at(t, state, state_rate, r, cj);
     eigen_triplets.clear();
     eigen_triplets.reserve(triplets.size());
     for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, e.value);
@@ -94,24 +93,39 @@ struct PolygonIdaSolver::Impl {
 
   // Direct solver: the same matrix copied into IDA's CSC SUNMatrix. KLU reuses its symbolic
   // analysis (ordering, pattern) between setups, so a changed contact pattern must reset it.
+  // The triplets (analytic or differences) of the current state.
+  void triplets_at(realtype t, N_Vector state, N_Vector state_rate, N_Vector r, realtype cj) {
+    if (jacobian_kind == PolygonJacobian::Analytic)
+      system->analytic_jacobian(t, cj, N_VGetArrayPointer(state), triplets);
+    else
+      system->sparse_jacobian(t, cj, N_VGetArrayPointer(state), N_VGetArrayPointer(state_rate),
+                              N_VGetArrayPointer(r), triplets);
+  }
+
+  // Direct solver: the matrix into IDA's CSC SUNMatrix. The analytic triplets come in the
+  // same sequence while the contact pairs stay the same, so the (row, col) → CSC slot map of
+  // the last full assembly is reused and the values are scattered in O(entries). KLU reuses
+  // its symbolic analysis (ordering, pattern) between setups, so a changed pattern resets it.
   static int jacobian_fn(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J,
                          void* user, N_Vector, N_Vector, N_Vector) {
     auto& m = *static_cast<Impl*>(user);
     try {
-      m.assemble(t, y, yp, r, cj);
-      const auto n = static_cast<std::size_t>(m.matrix.cols());
-      const auto nnz = static_cast<std::size_t>(m.matrix.nonZeros());
-      if (static_cast<std::size_t>(SUNSparseMatrix_NNZ(J)) < nnz &&
+      m.triplets_at(t, y, yp, r, cj);
+      bool cached = m.slot.size() == m.triplets.size();
+      for (std::size_t k = 0; cached && k < m.triplets.size(); ++k)
+        cached = m.keys[k] == key(m.triplets[k]);
+      if (!cached) m.build_pattern();
+      const std::size_t n = m.system->size(), nnz = m.csc_indices.size();
+      if (static_cast<std::size_t>(SUNSparseMatrix_NNZ(J)) != nnz &&
           SUNSparseMatrix_Reallocate(J, static_cast<sunindextype>(nnz)) != 0)
         return -1;
       sunindextype* pointers = SUNSparseMatrix_IndexPointers(J);
       sunindextype* indices = SUNSparseMatrix_IndexValues(J);
       double* data = SUNSparseMatrix_Data(J);
-      for (std::size_t c = 0; c <= n; ++c) pointers[c] = m.matrix.outerIndexPtr()[c];
-      for (std::size_t k = 0; k < nnz; ++k) {
-        indices[k] = m.matrix.innerIndexPtr()[k];
-        data[k] = m.matrix.valuePtr()[k];
-      }
+      std::copy(m.csc_pointers.begin(), m.csc_pointers.end(), pointers);
+      std::copy(m.csc_indices.begin(), m.csc_indices.end(), indices);
+      std::fill(data, data + nnz, 0.0);
+      for (std::size_t k = 0; k < m.triplets.size(); ++k) data[m.slot[k]] += m.triplets[k].value;
       const bool same = m.last_pointers.size() == n + 1 && m.last_indices.size() == nnz &&
                         std::equal(pointers, pointers + n + 1, m.last_pointers.begin()) &&
                         std::equal(indices, indices + nnz, m.last_indices.begin());
@@ -126,6 +140,35 @@ struct PolygonIdaSolver::Impl {
       return 0;
     } catch (...) {
       return -1;
+    }
+  }
+
+  static std::int64_t key(const PolygonChain::Triplet& e) {
+    return (static_cast<std::int64_t>(e.row) << 32) | static_cast<std::uint32_t>(e.col);
+  }
+
+  // The CSC pattern of the current triplets (Eigen sums duplicates, sorts rows) and each
+  // triplet's slot in it.
+  void build_pattern() {
+    eigen_triplets.clear();
+    eigen_triplets.reserve(triplets.size());
+    for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, 0.0);
+    const auto n = static_cast<Eigen::Index>(system->size());
+    matrix.resize(n, n);
+    matrix.setFromTriplets(eigen_triplets.begin(), eigen_triplets.end());
+    matrix.makeCompressed();
+    const auto* outer = matrix.outerIndexPtr();
+    const auto* inner = matrix.innerIndexPtr();
+    csc_pointers.assign(outer, outer + n + 1);
+    csc_indices.assign(inner, inner + matrix.nonZeros());
+    keys.resize(triplets.size());
+    slot.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      const auto& e = triplets[k];
+      keys[k] = key(e);
+      const int* first = inner + outer[e.col];
+      const int* last = inner + outer[e.col + 1];
+      slot[k] = static_cast<std::size_t>(std::lower_bound(first, last, e.row) - inner);
     }
   }
 
@@ -191,8 +234,8 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   check(IDASetDeltaCjLSetup(m.ida, options.cj_setup_ratio), "IDASetDeltaCjLSetup");
   check(IDASetNonlinConvCoef(m.ida, options.nonlinear_convergence_coefficient), "IDASetNonlinConvCoef");
   if (options.linear_solver == PolygonLinearSolver::Direct) {
-    // Room for the ring bands and a few contacts; jacobian_fn grows it when needed.
-    m.jacobian = SUNSparseMatrix(n, n, 40 * n, CSC_MAT, m.context);
+    // jacobian_fn sizes it to the pattern (IDA zeroes all of its room at every setup).
+    m.jacobian = SUNSparseMatrix(n, n, 20 * n, CSC_MAT, m.context);
     if (!m.jacobian) throw IdaError("SUNSparseMatrix", -1, "SUNSparseMatrix returned no matrix");
     m.ls = SUNLinSol_KLU(m.y, m.jacobian, m.context);
     if (!m.ls) throw IdaError("SUNLinSol_KLU", -1, "SUNLinSol_KLU returned no solver");
