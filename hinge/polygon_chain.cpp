@@ -122,6 +122,7 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
     }
   ring_box_.resize(n_rings_);
   seg_box_.resize(static_cast<std::size_t>(n_rings_ * n_ind_));
+  block_box_.resize(static_cast<std::size_t>(n_rings_ * (n_ind_ / seg_block + 1)));
 }
 
 std::vector<double> PolygonChain::component_scales() const {
@@ -583,17 +584,28 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
   // skipping the bars within two nodes); the reaction goes to the segment ends with weights
   // (1 − s, s). Both rings of a pair act as slave in turn.
   const int segs = half_ ? n_ind_ - 1 : n_ind_;
-  // Broad phase: per ring a bounding box, per segment a box grown by t.
+  // Broad phase: per ring a bounding box, per block of `seg_block` consecutive segments a
+  // box, per segment a box grown by t. A node tests a block's segments only inside the
+  // block's box (the segments are still visited in order: the same closest segment).
+  const int blocks = (segs + seg_block - 1) / seg_block;
+  auto unite = [](std::array<double, 4>& into, const std::array<double, 4>& b) {
+    into = {std::min(into[0], b[0]), std::max(into[1], b[1]), std::min(into[2], b[2]),
+            std::max(into[3], b[3])};
+  };
   for (int r = 0; r < n_rings_; ++r) {
     auto& box = ring_box_[r];
     box = {1e300, -1e300, 1e300, -1e300};
-    for (int a = 0; a < segs; ++a) {
-      const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
-      auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
-      sb = {std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
-            std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
-      box = {std::min(box[0], sb[0]), std::max(box[1], sb[1]), std::min(box[2], sb[2]),
-             std::max(box[3], sb[3])};
+    for (int blk = 0; blk < blocks; ++blk) {
+      auto& bb = block_box_[static_cast<std::size_t>(r * blocks + blk)];
+      bb = {1e300, -1e300, 1e300, -1e300};
+      for (int a = blk * seg_block; a < std::min(segs, (blk + 1) * seg_block); ++a) {
+        const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
+        auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
+        sb = {std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
+              std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
+        unite(bb, sb);
+      }
+      unite(box, bb);
     }
   }
   auto node_segment = [&](int rs, int rm, bool self) {
@@ -606,6 +618,13 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       int best_a = -1;
       double best_s = 0.0;
       for (int a = 0; a < segs; ++a) {
+        if (a % seg_block == 0) {
+          const auto& bb = block_box_[static_cast<std::size_t>(rm * blocks + a / seg_block)];
+          if (sx < bb[0] || sx > bb[1] || sy < bb[2] || sy > bb[3]) {
+            a += seg_block - 1;
+            continue;
+          }
+        }
         const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
         if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
         const int b = (a + 1) % n_ind_;

@@ -221,7 +221,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<std::array<int, 2>> tie_pairs_;
   std::vector<std::array<int, 2>> body_body_;  // consecutive bodies incl. target (−1)
   std::vector<double> phi_, pert_y_, pert_r_, base_r_;
-  std::vector<std::array<double, 4>> ring_box_, seg_box_;  // contact broad phase
+  std::vector<std::array<double, 4>> ring_box_, seg_box_, block_box_;  // contact broad phase
+  static constexpr int seg_block = 4;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
   std::vector<std::array<double, 3>> hinge_gx_, hinge_gy_;  // ∂θ_k/∂p on (k−1, k, k+1)
   std::vector<char> axis_force_row_;
