@@ -8,8 +8,9 @@
 //     forward/back substitution per Newton iteration.
 //   * Krylov: SPGMR preconditioned by a sparse LU (Eigen SparseLU) of the same matrix, with
 //     difference-quotient Jacobian–vector products (one residual per GMRES iteration). Kept
-//     for comparison: on Test 30 it costs ~10× the direct solve (README, Level 2 speed),
-//     because a preconditioner gone stale with cj or the contacts makes GMRES iterate.
+//     for comparison: on Test 30 it costs 2.4–3.7× the CPU time of the direct solve on the
+//     analytic matrix (README, Level 2 speed): a preconditioner gone stale with cj or the
+//     contacts makes GMRES iterate (≈ 25 000 iterations per run).
 #pragma once
 
 #include <memory>
