@@ -8,9 +8,12 @@
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -37,10 +40,17 @@ void check(int flag, const char* function, const std::string& message = {}) {
 
 struct PolygonIdaSolver::Impl {
   PolygonChain* system = nullptr;
+  PolygonJacobian jacobian_kind = PolygonJacobian::Analytic;
   SUNContext context = nullptr;
   void* ida = nullptr;
   N_Vector y = nullptr, yp = nullptr, atol = nullptr;
   SUNLinearSolver ls = nullptr;
+  SUNMatrix jacobian = nullptr;  // direct solver: CSC iteration matrix
+  std::vector<sunindextype> last_pointers, last_indices;  // its pattern at the last setup
+  std::vector<sunindextype> csc_pointers, csc_indices;    // pattern of the cached slot map
+  std::vector<std::int64_t> keys;                         // (row, col) of each triplet
+  std::vector<std::size_t> slot;                          // triplet → CSC position
+  long symbolic = 0;
   std::vector<PolygonChain::Triplet> triplets;
   std::vector<Eigen::Triplet<double>> eigen_triplets;
   Eigen::SparseMatrix<double> matrix;
@@ -52,6 +62,7 @@ struct PolygonIdaSolver::Impl {
   ~Impl() {
     if (ida) IDAFree(&ida);
     if (ls) SUNLinSolFree(ls);
+    if (jacobian) SUNMatDestroy(jacobian);
     if (atol) N_VDestroy(atol);
     if (yp) N_VDestroy(yp);
     if (y) N_VDestroy(y);
@@ -68,18 +79,104 @@ struct PolygonIdaSolver::Impl {
     }
   }
 
-  // Preconditioner setup: P = ∂F/∂y + cj ∂F/∂y′ (coloured differences), sparse LU.
+  // ∂F/∂y + cj ∂F/∂y′ into `matrix`, compressed columns, duplicate entries summed.
+  void assemble(realtype t, N_Vector state, N_Vector state_rate, N_Vector r, realtype cj) {
+    triplets_at(t, state, state_rate, r, cj);
+    eigen_triplets.clear();
+    eigen_triplets.reserve(triplets.size());
+    for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, e.value);
+    const auto n = static_cast<Eigen::Index>(system->size());
+    matrix.resize(n, n);
+    matrix.setFromTriplets(eigen_triplets.begin(), eigen_triplets.end());
+    matrix.makeCompressed();
+  }
+
+  // Direct solver: the same matrix copied into IDA's CSC SUNMatrix. KLU reuses its symbolic
+  // analysis (ordering, pattern) between setups, so a changed contact pattern must reset it.
+  // The triplets (analytic or differences) of the current state.
+  void triplets_at(realtype t, N_Vector state, N_Vector state_rate, N_Vector r, realtype cj) {
+    if (jacobian_kind == PolygonJacobian::Analytic)
+      system->analytic_jacobian(t, cj, N_VGetArrayPointer(state), triplets);
+    else
+      system->sparse_jacobian(t, cj, N_VGetArrayPointer(state), N_VGetArrayPointer(state_rate),
+                              N_VGetArrayPointer(r), triplets);
+  }
+
+  // Direct solver: the matrix into IDA's CSC SUNMatrix. The analytic triplets come in the
+  // same sequence while the contact pairs stay the same, so the (row, col) → CSC slot map of
+  // the last full assembly is reused and the values are scattered in O(entries). KLU reuses
+  // its symbolic analysis (ordering, pattern) between setups, so a changed pattern resets it.
+  static int jacobian_fn(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J,
+                         void* user, N_Vector, N_Vector, N_Vector) {
+    auto& m = *static_cast<Impl*>(user);
+    try {
+      m.triplets_at(t, y, yp, r, cj);
+      bool cached = m.slot.size() == m.triplets.size();
+      for (std::size_t k = 0; cached && k < m.triplets.size(); ++k)
+        cached = m.keys[k] == key(m.triplets[k]);
+      if (!cached) m.build_pattern();
+      const std::size_t n = m.system->size(), nnz = m.csc_indices.size();
+      if (static_cast<std::size_t>(SUNSparseMatrix_NNZ(J)) != nnz &&
+          SUNSparseMatrix_Reallocate(J, static_cast<sunindextype>(nnz)) != 0)
+        return -1;
+      sunindextype* pointers = SUNSparseMatrix_IndexPointers(J);
+      sunindextype* indices = SUNSparseMatrix_IndexValues(J);
+      double* data = SUNSparseMatrix_Data(J);
+      std::copy(m.csc_pointers.begin(), m.csc_pointers.end(), pointers);
+      std::copy(m.csc_indices.begin(), m.csc_indices.end(), indices);
+      std::fill(data, data + nnz, 0.0);
+      for (std::size_t k = 0; k < m.triplets.size(); ++k) data[m.slot[k]] += m.triplets[k].value;
+      const bool same = m.last_pointers.size() == n + 1 && m.last_indices.size() == nnz &&
+                        std::equal(pointers, pointers + n + 1, m.last_pointers.begin()) &&
+                        std::equal(indices, indices + nnz, m.last_indices.begin());
+      if (!same) {
+        m.last_pointers.assign(pointers, pointers + n + 1);
+        m.last_indices.assign(indices, indices + nnz);
+        if (SUNLinSol_KLUReInit(m.ls, J, static_cast<sunindextype>(nnz), SUNKLU_REINIT_PARTIAL) != 0)
+          return -1;
+        ++m.symbolic;
+      }
+      ++m.setups;
+      return 0;
+    } catch (...) {
+      return -1;
+    }
+  }
+
+  static std::int64_t key(const PolygonChain::Triplet& e) {
+    return (static_cast<std::int64_t>(e.row) << 32) | static_cast<std::uint32_t>(e.col);
+  }
+
+  // The CSC pattern of the current triplets (Eigen sums duplicates, sorts rows) and each
+  // triplet's slot in it.
+  void build_pattern() {
+    eigen_triplets.clear();
+    eigen_triplets.reserve(triplets.size());
+    for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, 0.0);
+    const auto n = static_cast<Eigen::Index>(system->size());
+    matrix.resize(n, n);
+    matrix.setFromTriplets(eigen_triplets.begin(), eigen_triplets.end());
+    matrix.makeCompressed();
+    const auto* outer = matrix.outerIndexPtr();
+    const auto* inner = matrix.innerIndexPtr();
+    csc_pointers.assign(outer, outer + n + 1);
+    csc_indices.assign(inner, inner + matrix.nonZeros());
+    keys.resize(triplets.size());
+    slot.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      const auto& e = triplets[k];
+      keys[k] = key(e);
+      const int* first = inner + outer[e.col];
+      const int* last = inner + outer[e.col + 1];
+      slot[k] = static_cast<std::size_t>(std::lower_bound(first, last, e.row) - inner);
+    }
+  }
+
+  // Krylov solver's preconditioner setup: sparse LU of the same matrix.
   static int setup(realtype t, N_Vector y, N_Vector yp, N_Vector r, realtype cj, void* user) {
     auto& m = *static_cast<Impl*>(user);
     try {
-      m.system->sparse_jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp),
-                                N_VGetArrayPointer(r), m.triplets);
-      m.eigen_triplets.clear();
-      m.eigen_triplets.reserve(m.triplets.size());
-      for (const auto& e : m.triplets) m.eigen_triplets.emplace_back(e.row, e.col, e.value);
-      const auto n = static_cast<Eigen::Index>(m.system->size());
-      m.matrix.resize(n, n);
-      m.matrix.setFromTriplets(m.eigen_triplets.begin(), m.eigen_triplets.end());
+      m.assemble(t, y, yp, r, cj);
       m.lu.analyzePattern(m.matrix);
       m.lu.factorize(m.matrix);
       ++m.setups;
@@ -110,6 +207,7 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
     : impl_(std::make_unique<Impl>()), t_(t0), y_(y0) {
   auto& m = *impl_;
   m.system = &system;
+  m.jacobian_kind = options.jacobian;
   const auto n = static_cast<sunindextype>(system.size());
   if (y0.size() != system.size()) throw std::invalid_argument("PolygonIdaSolver: state size");
   check(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
@@ -134,10 +232,21 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   if (options.initial_step > 0) check(IDASetInitStep(m.ida, options.initial_step), "IDASetInitStep");
   check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
   check(IDASetDeltaCjLSetup(m.ida, options.cj_setup_ratio), "IDASetDeltaCjLSetup");
-  m.ls = SUNLinSol_SPGMR(m.y, SUN_PREC_LEFT, 10, m.context);
-  if (!m.ls) throw IdaError("SUNLinSol_SPGMR", -1, "SUNLinSol_SPGMR returned no solver");
-  check(IDASetLinearSolver(m.ida, m.ls, nullptr), "IDASetLinearSolver");
-  check(IDASetPreconditioner(m.ida, &Impl::setup, &Impl::solve), "IDASetPreconditioner");
+  check(IDASetNonlinConvCoef(m.ida, options.nonlinear_convergence_coefficient), "IDASetNonlinConvCoef");
+  if (options.linear_solver == PolygonLinearSolver::Direct) {
+    // jacobian_fn sizes it to the pattern (IDA zeroes all of its room at every setup).
+    m.jacobian = SUNSparseMatrix(n, n, 20 * n, CSC_MAT, m.context);
+    if (!m.jacobian) throw IdaError("SUNSparseMatrix", -1, "SUNSparseMatrix returned no matrix");
+    m.ls = SUNLinSol_KLU(m.y, m.jacobian, m.context);
+    if (!m.ls) throw IdaError("SUNLinSol_KLU", -1, "SUNLinSol_KLU returned no solver");
+    check(IDASetLinearSolver(m.ida, m.ls, m.jacobian), "IDASetLinearSolver");
+    check(IDASetJacFn(m.ida, &Impl::jacobian_fn), "IDASetJacFn");
+  } else {
+    m.ls = SUNLinSol_SPGMR(m.y, SUN_PREC_LEFT, 10, m.context);
+    if (!m.ls) throw IdaError("SUNLinSol_SPGMR", -1, "SUNLinSol_SPGMR returned no solver");
+    check(IDASetLinearSolver(m.ida, m.ls, nullptr), "IDASetLinearSolver");
+    check(IDASetPreconditioner(m.ida, &Impl::setup, &Impl::solve), "IDASetPreconditioner");
+  }
 }
 
 PolygonIdaSolver::~PolygonIdaSolver() = default;
@@ -166,6 +275,7 @@ PolygonIdaStatistics PolygonIdaSolver::statistics() const {
         "IDAGetNumNonlinSolvConvFails");
   check(IDAGetNumLinIters(m.ida, &s.linear_iterations), "IDAGetNumLinIters");
   s.preconditioner_setups = m.setups;
+  s.symbolic_factorisations = m.symbolic;
   return s;
 }
 

@@ -1,9 +1,16 @@
-// IDA for the Level 2 polygon chain (THEORY §4.4): BDF on F(t, y, y′) = 0 with a Krylov
-// linear solver (SPGMR) preconditioned by an exact sparse LU (Eigen SparseLU) of
-// ∂F/∂y + cj ∂F/∂y′. The Jacobian is banded per ring plus contact couplings whose pattern
-// changes as contacts open and close, so it is rebuilt (coloured finite differences,
-// PolygonChain::sparse_jacobian) and refactorised at every preconditioner setup. The dense
-// and band solvers of IdaSolver would cost O(n³) or O(n·bw²) with bw ≈ half a ring.
+// IDA for the Level 2 polygon chain (THEORY §4.4): BDF on F(t, y, y′) = 0. The iteration
+// matrix ∂F/∂y + cj ∂F/∂y′ is banded per ring plus contact couplings whose pattern changes as
+// contacts open and close; it is rebuilt (coloured finite differences,
+// PolygonChain::sparse_jacobian) at every linear-solver setup. The dense and band solvers of
+// IdaSolver would cost O(n³) or O(n·bw²) with bw ≈ half a ring. Two linear solvers:
+//   * Direct (default): a sparse direct solve (SUNDIALS' KLU on a compressed-column matrix;
+//     the symbolic analysis is redone only when the contact pattern changes). One
+//     forward/back substitution per Newton iteration.
+//   * Krylov: SPGMR preconditioned by a sparse LU (Eigen SparseLU) of the same matrix, with
+//     difference-quotient Jacobian–vector products (one residual per GMRES iteration). Kept
+//     for comparison: on Test 30 it costs 2.4–3.7× the CPU time of the direct solve on the
+//     analytic matrix (README, Level 2 speed): a preconditioner gone stale with cj or the
+//     contacts makes GMRES iterate (≈ 25 000 iterations per run).
 #pragma once
 
 #include <memory>
@@ -14,7 +21,15 @@
 
 namespace ringcrush::hinge {
 
+enum class PolygonLinearSolver { Direct, Krylov };
+// Iteration matrix: from the force-law derivatives (PolygonChain::analytic_jacobian, one
+// residual-like pass) or by coloured differences (PolygonChain::sparse_jacobian, ~6 × colours
+// residuals).
+enum class PolygonJacobian { Analytic, Differences };
+
 struct PolygonIdaOptions {
+  PolygonLinearSolver linear_solver = PolygonLinearSolver::Direct;
+  PolygonJacobian jacobian = PolygonJacobian::Analytic;
   double relative_tolerance = 1e-6;
   // Absolute tolerance per component = absolute_scale × the component's scale
   // (PolygonChain::component_scales: R for positions, impact speed for velocities, 1 rad, KE).
@@ -25,14 +40,23 @@ struct PolygonIdaOptions {
   // Highest BDF order. BDF1–2 are A-stable: they step over the undamped node-scale
   // vibrations of the polygon (ω ≈ 1e6 rad/s) instead of resolving them.
   int max_order = 5;
-  // Relative change of cj that triggers a new preconditioner (IDASetDeltaCjLSetup; IDA's
-  // default 0.25). A stale preconditioner only costs GMRES iterations.
+  // Relative change of cj that triggers a new Jacobian (IDASetDeltaCjLSetup; IDA's default
+  // 0.25). A stale matrix only costs Newton (direct) or GMRES (Krylov) iterations.
   double cj_setup_ratio = 0.25;
+  // Newton stops when its estimated error is below this fraction of the local error
+  // tolerance (IDASetNonlinConvCoef; IDA's default 0.33). The default is too loose for the
+  // direct solver with its matrix kept over several steps: a stopped Newton leaves every
+  // step's energy slightly behind, always the same way, and on Test 30 at rtol 1e-3 the
+  // energy balance drifts to 1.0e-3 (welded) and 1.9e-3 (plated) at 0.33, 0.4e-3 and
+  // 1.3e-3 at 0.1; 0.03 brings it to 0.9e-4 and 2.5e-4 for ~10–20 % more Newton work.
+  // (SPGMR, whose Jacobian–vector products are exact, drifts less at 0.33: 2.3e-4.)
+  double nonlinear_convergence_coefficient = 0.03;
 };
 
 struct PolygonIdaStatistics {
   long steps = 0, residual_evaluations = 0, nonlinear_iterations = 0, error_test_failures = 0,
-       nonlinear_convergence_failures = 0, preconditioner_setups = 0, linear_iterations = 0;
+       nonlinear_convergence_failures = 0, preconditioner_setups = 0, linear_iterations = 0,
+       symbolic_factorisations = 0;  // direct solver: setups whose contact pattern changed
 };
 
 class PolygonIdaSolver {

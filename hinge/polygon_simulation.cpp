@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "odeint_integrator.hpp"
-#include "polygon_ida.hpp"
 
 namespace ringcrush::hinge {
 
@@ -94,6 +93,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     io.absolute_scale = options.absolute_scale;
     io.max_step = options.max_step_s;
     io.max_order = options.ida_max_order;
+    io.linear_solver = options.ida_linear_solver;
+    io.jacobian = options.ida_jacobian;
     PolygonIdaSolver ida(chain, 0.0, y, io);
     for (long k = 1; go; ++k) {
       const double t = ida.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
@@ -106,6 +107,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.nonlinear_iterations = s.nonlinear_iterations;
     out.rhs_evaluations = s.residual_evaluations;
     out.jacobian_setups = s.preconditioner_setups;
+    out.linear_iterations = s.linear_iterations;
+    out.symbolic_factorisations = s.symbolic_factorisations;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "polygon_chain.hpp"
+#include "polygon_ida.hpp"
 
 namespace ringcrush::hinge {
 
@@ -22,6 +23,8 @@ struct PolygonRunOptions {
   double yield_threshold_rad = 1e-4;  // ā above this marks a hinge as having yielded
   double max_step_s = 0.0;        // 0: unbounded
   int ida_max_order = 5;          // IDA BDF order limit (PolygonIdaOptions::max_order)
+  PolygonLinearSolver ida_linear_solver = PolygonLinearSolver::Direct;  // PolygonIdaOptions
+  PolygonJacobian ida_jacobian = PolygonJacobian::Analytic;             // PolygonIdaOptions
 };
 
 struct PolygonHistory {  // full structure (both halves), SI
@@ -40,7 +43,7 @@ struct PolygonRunOutput {
   double arrest_time_s = -1.0;         // first time the impactor speed toward the chain ≤ 0
   double end_time_s = 0.0;
   long steps = 0, rejected_steps = 0, nonlinear_iterations = 0, rhs_evaluations = 0,
-       jacobian_setups = 0;
+       jacobian_setups = 0, linear_iterations = 0, symbolic_factorisations = 0;
   double wall_time_s = 0.0;
   std::vector<double> final_state;
 };

@@ -61,10 +61,10 @@ void bench(const BenchOptions& o) {
   std::sort(sorted.begin(), sorted.end());
   const double median = sorted[sorted.size() / 2];
   fmt::print("scene {} level 2 ({}, N = {}, rtol {:g}): median wall {:.3f} s over {} runs; {} steps, "
-             "{} residuals, {} Jacobian setups, energy balance {:.2e}\n",
+             "{} residuals, {} Jacobian setups ({} symbolic), {} linear iterations, energy balance {:.2e}\n",
              scene.name, o.integrator, scene.hinge.nodes_per_ring, last.relative_tolerance_used, median,
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
-             last.raw.energy_balance_error);
+             last.raw.symbolic_factorisations, last.raw.linear_iterations, last.raw.energy_balance_error);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
              last.raw.arrest_time_s * 1e3);

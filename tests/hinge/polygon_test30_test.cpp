@@ -9,7 +9,7 @@
 //      (30–60°) (thesis §4.2.3, THEORY §4.1). Tolerance ±11.25° = 1.5 node spacings at N = 48: a peak is located to
 //      one node (7.5°), and the thesis places its hinges only to the element (3.75°) on
 //      figures we do not have.
-// Each case is a full impact (~15 ms simulated, 10–20 s wall on one core).
+// Each case is a full impact (~15 ms simulated, 4–6 s CPU on one core; README, Level 2 speed).
 #include <gtest/gtest.h>
 
 #include <cmath>
