@@ -14,10 +14,10 @@
 // Implementation notes for the drivers:
 //  - commit(u) takes the trial states of u: if the last evaluate() was at another u (e.g. a
 //    half-step residual evaluated after the step), it evaluates u again first;
-//  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues, re-solved
-//    with the committed thickness λ3 of its points, when its shape or λ3 has changed by 5 %) and the contact springs of the LAST
-//    evaluate() within one element depth of contact; call it between evaluate() calls, on
-//    the driver's thread;
+//  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues with the
+//    committed thickness λ3 of their points, re-solved when an element's shape or λ3 has
+//    changed by 5 %) and the contact springs of the LAST evaluate() within one element depth
+//    of contact; call it between evaluate() calls, on the driver's thread;
 //  - bulk viscosity (ChainInput::bulk_viscosity, explicit only): a pressure at each stress
 //    point proportional to its volumetric strain rate over the step the driver announces through
 //    set_increment_time(), with L_e = 2 c_d / ω_e from the element eigenvalue; the force is
