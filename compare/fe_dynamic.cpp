@@ -65,7 +65,8 @@ void require_finite_result(const fe::DynamicResult& r, int rings) {
     const auto& h = r.history[k];
     const std::string at = fmt::format("at history row {} (t = {:g} s)", k, h.time_s);
     for (double v : {h.time_s, h.impactor_displacement_m, h.impactor_velocity_m_s, h.impactor_force_n, h.kinetic_j,
-                     h.elastic_j, h.plastic_j, h.contact_j, h.numerical_j, h.external_work_j, h.step_s})
+                     h.elastic_j, h.plastic_j, h.contact_j, h.numerical_j, h.external_work_j, h.bulk_viscous_j,
+                     h.step_s})
       check_finite(v, "value " + at);
     if (static_cast<int>(h.ring_crush_m.size()) != rings)
       throw std::runtime_error(fmt::format("fe dynamic result: {} ring crushes {} for {} rings",
@@ -109,6 +110,9 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   in.impactor_mass_kg = s.impactor->mass_kg;
   in.impactor_velocity_m_s = s.impactor->velocity_m_s;
   in.fixed_target = s.far_end == FarEnd::Fixed;
+  // Bulk viscosity acts in the explicit driver only (the ChainModel forms it from the step
+  // the explicit driver announces); HHT ignores it.
+  in.bulk_viscosity = s.fe.bulk_viscosity;
   fe::validate(in);
   return in;
 }
@@ -189,6 +193,10 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
     out.numerical_j.push_back(h.numerical_j);
     out.external_work_j.push_back(h.external_work_j);
   }
+  // Bulk viscosity is an explicit-only damping (fe/element/bulk_viscosity.hpp): its column
+  // appears only when it acted.
+  if (s.fe.solver == FeSolver::Explicit && s.fe.bulk_viscosity > 0)
+    for (const auto& h : r.history) out.bulk_viscous_j.push_back(h.bulk_viscous_j);
 
   // Final state per ring, measured once by compare/measures on the deformed outer surfaces
   // (THEORY §4.6): crush from the axial extent, wrap of ring i over ring i+1.

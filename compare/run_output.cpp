@@ -35,7 +35,8 @@ double energy_balance_error(const RunResult& r, const Scene& scene) {
   double worst = 0.0;
   for (std::size_t i = 0; i < r.kinetic_j.size(); ++i) {
     const double total = at(r.kinetic_j, i) + at(r.elastic_j, i) + at(r.plastic_j, i) +
-                         at(r.contact_j, i) + at(r.numerical_j, i) - at(r.external_work_j, i);
+                         at(r.contact_j, i) + at(r.numerical_j, i) + at(r.bulk_viscous_j, i) -
+                         at(r.external_work_j, i);
     worst = std::max(worst, std::abs(total - e0));
   }
   return worst / e0;
@@ -133,6 +134,7 @@ nlohmann::json summary_json(const RunResult& r, const Scene& scene) {
                              {"contact", at(r.contact_j, r.kinetic_j.size() - 1)},
                              {"numerical", at(r.numerical_j, r.kinetic_j.size() - 1)},
                              {"external_work", at(r.external_work_j, r.kinetic_j.size() - 1)}};
+      if (!r.bulk_viscous_j.empty()) j["final_energy_J"]["bulk_viscous"] = r.bulk_viscous_j.back();
     }
   } else {
     j["max_force_N"] = peak_force(r);
@@ -164,6 +166,8 @@ CsvTable history_table(const RunResult& r) {
   const bool energies = !r.kinetic_j.empty() || !r.plastic_j.empty();
   if (energies)
     t.columns.insert(t.columns.end(), {"kinetic_J", "elastic_J", "plastic_J", "contact_J", "numerical_J", "external_work_J"});
+  const bool viscous = !r.bulk_viscous_j.empty();  // explicit FE with bulk viscosity
+  if (viscous) t.columns.push_back("bulk_viscous_J");
   for (std::size_t k = 0; k < first.size(); ++k) {
     std::vector<double> row{first[k]};
     if (dynamic) {
@@ -177,6 +181,7 @@ CsvTable history_table(const RunResult& r) {
     if (energies)
       for (const auto* e : {&r.kinetic_j, &r.elastic_j, &r.plastic_j, &r.contact_j, &r.numerical_j, &r.external_work_j})
         row.push_back(at(*e, k));
+    if (viscous) row.push_back(at(r.bulk_viscous_j, k));
     t.add_row(std::move(row));
   }
   return t;

@@ -49,6 +49,8 @@ struct RunResult {
   // Energies [step] (J): kinetic, elastic (recoverable), plastic dissipation, contact
   // (penalty energy + contact damping), numerical dissipation, external work.
   std::vector<double> kinetic_j, elastic_j, plastic_j, contact_j, numerical_j, external_work_j;
+  // Explicit FE with bulk viscosity only (empty otherwise): the energy it dissipated [step].
+  std::vector<double> bulk_viscous_j;
 
   // Final state per ring.
   std::vector<double> crush_ratio;          // c_i = δ_i / D

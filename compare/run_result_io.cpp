@@ -70,6 +70,8 @@ json run_result_to_json(const RunResult& r) {
   }
   for (const auto& c : r.ring_crush_m) require_finite(c, "ring_crush_m");
   j["ring_crush_m"] = r.ring_crush_m;
+  require_finite(r.bulk_viscous_j, "bulk_viscous_j");
+  if (!r.bulk_viscous_j.empty()) j["bulk_viscous_j"] = r.bulk_viscous_j;  // optional field
   j["wrap_around"] = r.wrap_around;
   j["mode"] = r.mode;
   json outline = json::array();
@@ -108,6 +110,7 @@ RunResult run_result_from_json(const json& j) {
   else if (analysis == "dynamic") r.analysis = AnalysisType::Dynamic;
   else throw std::runtime_error("run result: analysis must be \"static\" or \"dynamic\"");
   for (const auto& f : vector_fields) r.*f.member = numbers(j, f.name);
+  if (j.contains("bulk_viscous_j")) r.bulk_viscous_j = numbers(j, "bulk_viscous_j");
   for (const auto& c : field(j, "ring_crush_m")) {
     std::vector<double> v = c.get<std::vector<double>>();
     require_finite(v, "ring_crush_m");

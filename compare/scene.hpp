@@ -99,6 +99,7 @@ struct FeSettings {
   double friction_coefficient = 0.0;
   double friction_penalty_scale = 0.1;  // tangential (stick) penalty, scaled as the normal one
   double explicit_safety = 0.8;
+  double bulk_viscosity = 0.06;      // explicit: linear bulk viscosity b1 (ABAQUS/Explicit default)
   double energy_error_limit = 0.05;  // stop when |balance error| / KE0 exceeds this
 };
 

@@ -28,6 +28,8 @@ void validate(const ChainInput& in) {
        fmt::format("impactor mass must be positive (got {} kg)", in.impactor_mass_kg));
   need(std::isfinite(in.impactor_velocity_m_s) && in.impactor_velocity_m_s >= 0,
        fmt::format("impactor velocity (toward the chain) must be >= 0 (got {} m/s)", in.impactor_velocity_m_s));
+  need(std::isfinite(in.bulk_viscosity) && in.bulk_viscosity >= 0 && in.bulk_viscosity < 1,
+       fmt::format("bulk viscosity b1 must be in [0, 1) (got {})", in.bulk_viscosity));
   const double d = 2 * in.ring.outer_radius_m;
   // Tolerance for "equal" lengths: scene values are given to a few digits (50.8 mm = 2 in).
   const double tol = 1e-6 * d;

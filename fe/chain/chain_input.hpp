@@ -31,6 +31,10 @@ struct ChainInput {
   double impactor_mass_kg = 0.256;   // physical (full) mass; a half model carries half
   double impactor_velocity_m_s = 30; // toward the chain (> 0)
   bool fixed_target = true;          // rigid plane under the last ring; false: free far end
+  // Linear bulk viscosity b1 (fe/element/bulk_viscosity.hpp): explicit driver only (HHT damps
+  // the high modes itself), fraction of critical damping of each element's highest mode,
+  // in [0, 1); 0 = none. The scene default is ABAQUS/Explicit's 0.06.
+  double bulk_viscosity = 0.0;
   // Threads for the element loop (chain_model.cpp): 0 = automatic (two when the machine has
   // two idle cores and the chain at least 64 elements), 1 = one, 2 = two. The results are
   // bitwise the same either way.

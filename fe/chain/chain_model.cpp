@@ -1,6 +1,5 @@
 #include "fe/chain/chain_model.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -13,8 +12,10 @@
 
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/chain/geometry_update.hpp"
+#include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
+#include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
 #include "fe/material/j2_plane_stress.hpp"
 
@@ -49,20 +50,11 @@ double shape_measure(const std::array<int, 8>& conn, const std::vector<Eigen::Ve
   return area > 0 ? l * l / area : std::numeric_limits<double>::infinity();
 }
 
-// Largest λ of K_e v = λ M_e v: elastic tangent of the unstressed element on coordinates
-// x, HRZ mass (constant) per node.
-double element_omega2(const ElementCoords& x, const std::array<double, 8>& mass, Integration rule, double width,
-                      const J2PlaneStress& material) {
-  const Cps8Geometry geo = cps8_geometry(x, rule, width);
-  std::array<PointState, 9> committed{}, trial{};
-  Cps8Output out;
-  const double du[16] = {};
-  cps8_evaluate(geo, du, committed.data(), trial.data(), material, true, out);
-  Eigen::Matrix<double, 16, 1> s;
-  for (int k = 0; k < 16; ++k) s(k) = 1.0 / std::sqrt(mass[k / 2]);
-  const ElementMatrix a = s.asDiagonal() * out.tangent * s.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<ElementMatrix> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
-  return eig.eigenvalues().maxCoeff();
+// Largest out-of-plane stretch λ3 of an element's points (its stiffness scales with it).
+double thickness_measure(const PointState* states, int points) {
+  double l3 = 0;
+  for (int i = 0; i < points; ++i) l3 = std::max(l3, states[i].thickness_stretch);
+  return l3;
 }
 
 }  // namespace
@@ -84,13 +76,16 @@ struct ChainModel::Impl {
   // Element eigenvalue bound: the exact λ_max of each element at its last exact evaluation
   // and the shape measure there; in between λ is scaled with the shape measure.
   std::vector<std::array<double, 8>> element_mass;
-  std::vector<double> omega2_exact, shape_exact;
+  std::vector<double> omega2_exact, shape_exact, thickness_exact;
   ChainContactForces forces;
   std::vector<std::pair<int, double>> pressure;
   double face_near_omega2 = 0, surface_near_omega2 = 0;
   int face_near_node = -1, surface_near_node = -1;
   std::vector<std::array<double, 4>> ring_box;  // per ring: outer node box (lo x, hi x, lo y, hi y)
   SystemEvaluation scratch;
+  // Bulk viscosity: the step the next increment is taken over (0: off) and 2 b1 E/(1 − ν²),
+  // which over ω_e is the element's coefficient b1 ρ c_d L_e with L_e = 2 c_d / ω_e.
+  double increment_time = 0, bulk_scale = 0;
   Cps8GeometryUpdater updater;
   double width;
   // Two threads: the caller does the contact and elements [0, split), the helper elements
@@ -105,8 +100,32 @@ struct ChainModel::Impl {
       : topo(make_chain_topology(in)),
         material(in.material),
         points_per_element(in.integration == Integration::Reduced ? 4 : 9),
+        bulk_scale(2 * in.bulk_viscosity * in.material.youngs_modulus_pa /
+                   (1 - in.material.poisson_ratio * in.material.poisson_ratio)),
         updater(in.integration),
         width(in.ring.width_m) {}
+
+  // Bulk-viscous forces of every element for the increment u − u_n over increment_time
+  // (bulk_viscosity.hpp) into q (all dofs).
+  void bulk_viscous(const Eigen::VectorXd& u, Eigen::VectorXd& q) const {
+    q.setZero(u.size());
+    double ue[16];
+    ElementVector fe;
+    const auto& elems = topo.mesh.elements;
+    for (std::size_t e = 0; e < elems.size(); ++e) {
+      const auto& conn = elems[e];
+      for (int a = 0; a < 8; ++a) {
+        ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
+        ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
+      }
+      fe.setZero();
+      add_bulk_viscous_force(geometry[e], ue, increment_time, bulk_scale / std::sqrt(omega2_exact[e]), fe);
+      for (int a = 0; a < 8; ++a) {
+        q(2 * conn[a]) += fe(2 * a);
+        q(2 * conn[a] + 1) += fe(2 * a + 1);
+      }
+    }
+  }
 
   // Elements [e0, e1): force into `force` (all dofs), energies returned; the tangent goes
   // straight into the system (serial) or into `tangents` (threads).
@@ -203,6 +222,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.element_mass.resize(ne);
   m.omega2_exact.resize(ne);
   m.shape_exact.resize(ne);
+  m.thickness_exact.assign(ne, 1.0);
   for (int e = 0; e < ne; ++e) {
     ElementCoords xe;
     for (int a = 0; a < 8; ++a) xe.row(a) = mesh_.nodes[mesh_.elements[e][a]].transpose();
@@ -213,7 +233,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
       m.mass(2 * mesh_.elements[e][a] + 1) += me[a];
     }
     m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
-    m.omega2_exact[e] = element_omega2(xe, me, input.integration, input.ring.width_m, m.material);
+    m.omega2_exact[e] = element_max_eigenvalue(xe, me, input.integration, input.ring.width_m, m.material);
     m.shape_exact[e] = shape_measure(mesh_.elements[e], mesh_.nodes);
   }
   m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
@@ -425,6 +445,12 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     }
     if (want_tangent) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
   }
+  if (m.bulk_scale > 0 && m.increment_time > 0) {
+    m.bulk_viscous(u, out.viscous_force);
+    out.force += out.viscous_force;
+  } else {
+    out.viscous_force.resize(0);
+  }
   out.elastic_energy = elastic;
   out.plastic_work = plastic;
   out.contact_energy = contact_energy;
@@ -455,10 +481,12 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
   Impl& m = *impl_;  // the exact element eigenvalues are cached
   // Elements (issue 4 item 5): ω_max² of the assembled system is at most the largest
   // element λ_max(K_e, M_e) (Rayleigh quotient, M = Σ M_e), with the elastic tangent, which
-  // bounds the elastic-plastic one. λ_max is computed exactly (16×16 eigenproblem) at the
-  // start and again for every element whose shape measure (L_max²/A) has changed by more
-  // than 5 % since its last exact value; in between it is scaled with the shape measure.
-  // (The shortest edge alone underestimates λ of a sheared element up to 3×.)
+  // bounds the elastic-plastic one (element_eigenvalue.hpp). λ_max is computed exactly
+  // (16×16 eigenproblem, with the committed thickness λ3 of the points) at the start and again for every
+  // element whose shape measure (L_max²/A) or largest λ3 has changed by more than 5 % since
+  // its last exact value; in between it is scaled with both. (The shortest edge alone
+  // underestimates λ of a sheared element up to 3×; the reference thickness underestimates
+  // it by λ3, up to 1.4× at a crushed hinge.)
   std::vector<Eigen::Vector2d> x(mesh_.nodes.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
   double el = 0;
@@ -466,17 +494,22 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
   for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
     const double shape = shape_measure(mesh_.elements[e], x);
     if (!std::isfinite(shape)) throw std::runtime_error(fmt::format("stable step: element {} (ring {}) has collapsed", e + 1, mesh_.element_ring[e] + 1));
-    if (std::abs(shape / m.shape_exact[e] - 1) > 0.05) {
+    const int ppe = m.points_per_element;
+    const PointState* states = &m.committed[e * static_cast<std::size_t>(ppe)];
+    const double thick = thickness_measure(states, ppe);
+    if (std::abs(shape / m.shape_exact[e] - 1) > 0.05 || std::abs(thick / m.thickness_exact[e] - 1) > 0.05) {
       ElementCoords xe;
       for (int a = 0; a < 8; ++a) xe.row(a) = x[mesh_.elements[e][a]].transpose();
       try {
-        m.omega2_exact[e] = element_omega2(xe, m.element_mass[e], input_.integration, input_.ring.width_m, m.material);
+        m.omega2_exact[e] =
+            element_max_eigenvalue(xe, m.element_mass[e], input_.integration, input_.ring.width_m, m.material, states, ppe);
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("stable step: element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
       }
       m.shape_exact[e] = shape;
+      m.thickness_exact[e] = thick;
     }
-    const double w2 = m.omega2_exact[e] * shape / m.shape_exact[e];
+    const double w2 = m.omega2_exact[e] * (shape / m.shape_exact[e]) * (thick / m.thickness_exact[e]);
     if (w2 > el) { el = w2; worst = static_cast<int>(e); }
   }
   // Contact springs of the last evaluation within one element depth (active or about to
@@ -486,11 +519,21 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
   const int contact_node = surface_wins ? m.surface_near_node : m.face_near_node;
   StableStep s;
   s.step_s = 2.0 / std::sqrt(el + contact);
+  // Bulk viscosity damps the highest mode at ξ = b1: the central-difference limit becomes
+  // Δt ≤ (2/ω_max)(√(1 + ξ²) − ξ) (ABAQUS Analysis Guide, explicit stability limit).
+  const double xi = input_.bulk_viscosity;
+  if (xi > 0) s.step_s *= std::sqrt(1 + xi * xi) - xi;
   if (contact > el)
     s.limited_by = fmt::format("contact penalty, node {}", contact_node + 1);
   else
     s.limited_by = fmt::format("element {} (ring {})", worst + 1, mesh_.element_ring[worst] + 1);
   return s;
+}
+
+void ChainModel::set_increment_time(double dt) {
+  if (!(dt >= 0) || !std::isfinite(dt))
+    throw std::invalid_argument(fmt::format("ChainModel::set_increment_time: dt = {} must be >= 0 and finite", dt));
+  impl_->increment_time = dt;
 }
 
 std::vector<double> ChainModel::contact_pressure() const {

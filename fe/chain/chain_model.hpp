@@ -14,10 +14,15 @@
 // Implementation notes for the drivers:
 //  - commit(u) takes the trial states of u: if the last evaluate() was at another u (e.g. a
 //    half-step residual evaluated after the step), it evaluates u again first;
-//  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues, re-solved
-//    when an element's shape has changed by 5 %) and the contact springs of the LAST
-//    evaluate() within one element depth of contact; call it between evaluate() calls, on
-//    the driver's thread;
+//  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues with the
+//    committed thickness λ3 of their points, re-solved when an element's shape or λ3 has
+//    changed by 5 %) and the contact springs of the LAST evaluate() within one element depth
+//    of contact; call it between evaluate() calls, on the driver's thread;
+//  - bulk viscosity (ChainInput::bulk_viscosity, explicit only): a pressure at each stress
+//    point proportional to its volumetric strain rate over the step the driver announces through
+//    set_increment_time(), with L_e = 2 c_d / ω_e from the element eigenvalue; the force is
+//    in SystemEvaluation::force and, separately, viscous_force; stable_step() is reduced by
+//    √(1 + b1²) − b1 (the central-difference limit with damping ξ = b1 in the highest mode);
 //  - with two threads (ChainInput::threads) the element loop is split over a persistent
 //    helper thread; the results are bitwise those of one thread.
 #pragma once
@@ -87,6 +92,9 @@ class ChainModel final : public DynamicSystem {
   void commit(const Eigen::VectorXd& u) override;
   SparseSystem& tangent_system() override;
   StableStep stable_step(const Eigen::VectorXd& u) const override;
+  // Bulk viscosity (ChainInput::bulk_viscosity > 0): the next evaluate() forms the element
+  // volumetric strain rates over this step; 0 switches it off.
+  void set_increment_time(double dt) override;
 
   // Contact forces of the last evaluate().
   const ChainContactForces& contact_forces() const;

@@ -143,6 +143,7 @@ class DynamicRun {
     r.contact_j = sym_ * e.contact;
     r.numerical_j = sym_ * e.numerical();
     r.external_work_j = sym_ * e.external_work;
+    r.bulk_viscous_j = sym_ * e.viscous_work;
     r.step_s = d.step_size();
     return r;
   }

@@ -51,6 +51,7 @@ struct DynamicRow {
   // steps; it equals KE0 + external − (kinetic + elastic + plastic + contact) up to the
   // energy balance error (elastic + plastic + contact − W_f).
   double kinetic_j = 0, elastic_j = 0, plastic_j = 0, contact_j = 0, numerical_j = 0, external_work_j = 0;
+  double bulk_viscous_j = 0;  // explicit with bulk viscosity: W_v, its dissipation (energy_balance.hpp)
   double step_s = 0;
 };
 

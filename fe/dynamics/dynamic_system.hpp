@@ -29,6 +29,9 @@ struct SystemEvaluation {
   double plastic_work = 0;        // plastic dissipation since t = 0 (J)
   double contact_energy = 0;      // penalty energy stored in the active contacts (J)
   double contact_time_s = 0;      // wall time spent in contact search and forces
+  // The part of `force` that is bulk viscosity (rate-dependent, explicit only; empty when the
+  // system has none): the drivers book its work as its own dissipation, not as stored energy.
+  Eigen::VectorXd viscous_force;
 };
 
 struct StableStep {
@@ -56,6 +59,11 @@ class DynamicSystem {
   // the active contact stiffness over the node mass); the explicit driver multiplies the
   // step by its safety factor.
   virtual StableStep stable_step(const Eigen::VectorXd& u) const = 0;
+
+  // Explicit driver: the step Δt over which the next evaluate()'s increment u − u_n is taken,
+  // so that a rate-dependent force (bulk viscosity, ε̇ = Δε/Δt) can be formed. 0 (the
+  // default, and HHT, which never calls it): no rate-dependent force.
+  virtual void set_increment_time(double /*dt*/) {}
 };
 
 }  // namespace ringcrush::fe

@@ -91,6 +91,8 @@ void ExplicitDriver::step(double t_limit) {
   du_ = dt_ * v_;
   u_ += du_;
   f_old_ = ev_.force;
+  q_old_ = ev_.viscous_force;
+  sys_.set_increment_time(dt_);  // rate-dependent (bulk-viscous) forces: ε̇ = Δε/Δt
   sys_.evaluate(u_, false, ev_);
   ++evaluations_;
   contact_time_ += ev_.contact_time_s;
@@ -107,7 +109,7 @@ void ExplicitDriver::step(double t_limit) {
   min_dt_ = steps_ == 1 ? dt_ : std::min(min_dt_, dt_);
   max_dt_ = std::max(max_dt_, dt_);
 
-  energy_.add_step(f_old_, ev_.force, du_);
+  energy_.add_step(f_old_, ev_.force, q_old_, ev_.viscous_force, du_);
   energy_.set_state(EnergyBalance::kinetic_energy(m, v_), ev_);
   // A conservative system cannot gain kinetic energy beyond what it started with: growth is
   // the central-difference instability (Δt > 2/ω_max), caught before any NaN appears.

@@ -11,6 +11,10 @@
 // `stable_step_every` steps and whenever the caller says the contact activity changed
 // (request_stable_step()). What limited it is logged.
 //
+// A rate-dependent force of the system (bulk viscosity, SystemEvaluation::viscous_force) is
+// formed from the step's increment over Δt (set_increment_time before each evaluate), i.e.
+// at the half-step velocity v_{n+½}, as explicit codes do; its work is booked as W_v.
+//
 // Blow-up is detected, never output: a non-finite force or velocity, or a kinetic energy
 // above blowup_energy_factor × the reference energy (a conservative system cannot gain
 // energy), throws SolveFailure with the time, step, stable step and where it happened.
@@ -76,7 +80,7 @@ class ExplicitDriver {
   DynamicSystem& sys_;
   ExplicitOptions opt_;
   Eigen::VectorXd inv_mass_;  // 1/M on free dofs, 0 on fixed ones
-  Eigen::VectorXd u_, v_, a_, du_, f_old_;
+  Eigen::VectorXd u_, v_, a_, du_, f_old_, q_old_;
   SystemEvaluation ev_;
   EnergyBalance energy_;
   double t_ = 0, dt_ = 0, dt_stable_ = 0, dt_target_ = 0;

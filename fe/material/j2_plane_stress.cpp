@@ -166,7 +166,15 @@ J2Update J2PlaneStress::return_map(const Vec3& strain_increment, const PointStat
   out.plastic = true;
   out.plastic_increment = dg * ps;
   out.peeq = alpha;
-  out.dissipation = s.dot(out.plastic_increment);
+  // Plastic work of the increment by the trapezoidal rule, ½ (S_n + S_{n+1}) : ΔEp — the
+  // quadrature of the drivers' force work (energy_balance.hpp), so that Δψ + ΔD equals
+  // ½ (S_n + S_{n+1}) : ΔE exactly. It is ≥ 0: |S_n|_P ≤ |S_{n+1}|_P (the yield surface only
+  // grows; up to the O(ΔE) push-forward of the committed stress) and Cauchy–Schwarz in the
+  // P inner product. The backward-Euler value S_{n+1} : ΔEp
+  // is larger by ½ ΔS : ΔEp ≥ 0 per step, an O(Δ) error that a stress chattering across the
+  // yield surface at the step rate (an undamped high mode of explicit integration) accumulates
+  // without bound: 19.7 % of KE0 on the selective explicit thesis run (README, "Explicit").
+  out.dissipation = 0.5 * (s + committed.stress).dot(out.plastic_increment);
   out.elastic_energy = 0.5 * s.dot(c_inv_ * s);
   // Plastic flow is isochoric: ΔEp33 = −(ΔEp11 + ΔEp22).
   out.strain33_increment = -nu_ / e_ * (s(0) + s(1) - committed.stress(0) - committed.stress(1)) -

@@ -45,7 +45,7 @@ struct J2Update {
   Mat3 tangent;     // algorithmic (consistent) tangent dS/dΔE
   Vec3 plastic_increment = Vec3::Zero();  // ΔEp
   double peeq = 0.0;                      // ᾱ(n+1)
-  double dissipation = 0.0;               // S(n+1) : ΔEp per unit volume of the increment
+  double dissipation = 0.0;               // ½ (S(n) + S(n+1)) : ΔEp per unit volume (trapezoid)
   double strain33_increment = 0.0;        // out-of-plane strain increment (plane stress)
   bool plastic = false;
   double elastic_energy = 0.0;            // ½ S : C⁻¹ : S per unit volume

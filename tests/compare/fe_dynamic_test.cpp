@@ -210,6 +210,7 @@ TEST(FeDynamicInput, ThesisSceneMapsEveryValue) {
   EXPECT_EQ(d.frames, 20);
   EXPECT_DOUBLE_EQ(d.energy_error_limit, 0.05);
   EXPECT_DOUBLE_EQ(d.safety, 0.8);
+  EXPECT_DOUBLE_EQ(c.bulk_viscosity, 0.06);  // ABAQUS/Explicit's default b1
   EXPECT_GE(d.max_step_s, d.initial_step_s);
   EXPECT_LT(d.min_step_s, d.initial_step_s);
 }
@@ -217,7 +218,7 @@ TEST(FeDynamicInput, ThesisSceneMapsEveryValue) {
 TEST(FeDynamicInput, PlatesFreeEndAndSolverKeys) {
   const Scene s = scene_variant("test30_plates", {{"type = \"fixed\"", "type = \"free\""},
                                                   {"integration = \"reduced\"", "integration = \"full\""},
-                                                  {"\\[fe\\]", "[fe]\nexplicit_safety = 0.6\nenergy_error_limit = 0.02\n"
+                                                  {"\\[fe\\]", "[fe]\nexplicit_safety = 0.6\nenergy_error_limit = 0.02\nbulk_viscosity = 0.1\n"
                                                                "contact_smoothing = 0.1\ncontact_penalty_scale = 3.0"},
                                                   {"fields = true", "fields = false"},
                                                   {"stop_at_rest = true", "stop_at_rest = false"}});
@@ -237,6 +238,7 @@ TEST(FeDynamicInput, PlatesFreeEndAndSolverKeys) {
   EXPECT_EQ(d.scheme, fe::DynamicScheme::Explicit);
   EXPECT_DOUBLE_EQ(d.safety, 0.6);
   EXPECT_DOUBLE_EQ(d.energy_error_limit, 0.02);
+  EXPECT_DOUBLE_EQ(c.bulk_viscosity, 0.1);
   EXPECT_FALSE(d.stop_at_rest);
   EXPECT_EQ(d.frames, 0);  // outputs.fields = false
   const Scene free = load_scene(scene_path("test28_free"));
@@ -254,6 +256,15 @@ TEST(FeDynamicInput, RefusesWhatTheDynamicFeDoesNotCover) {
     FAIL() << "friction accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("friction"), std::string::npos) << e.what();
+  }
+  // Bulk viscosity b1 outside [0, 1): a named scene error.
+  for (const char* b1 : {"-0.06", "1.0", "nan"}) {
+    try {
+      scene_variant("thesis_dynamic", {{"\\[fe\\]", std::string("[fe]\nbulk_viscosity = ") + b1}});
+      ADD_FAILURE() << "bulk_viscosity = " << b1 << " accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("bulk_viscosity"), std::string::npos) << e.what();
+    }
   }
   const Scene strain = scene_variant("thesis_dynamic", {{"plane_stress", "plane_strain"}});
   EXPECT_THROW(fe_chain_input(strain), std::invalid_argument);

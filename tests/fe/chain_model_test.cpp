@@ -386,6 +386,34 @@ TEST(ChainModel, StableStepBoundsAShearedRing) {
   }
 }
 
+TEST(ChainModel, StableStepBoundsACrushedRing) {
+  // A ring crushed in one increment by a uniform in-plane compression to 0.75 (the shape
+  // measure L²/A does not change): plastic flow thickens the plane-stress wall (λ3 ≈ 1.3),
+  // which stiffens every element by λ3 at the same mass. Truth: the assembled tangent of the
+  // committed state (elastic, or elastic-plastic at points on the yield surface).
+  for (Integration rule : {Integration::Reduced, Integration::Selective}) {
+    ChainInput in = chain(1, JointKind::Free, true, 8);
+    in.integration = rule;
+    ChainModel model(in);
+    const auto& mesh = model.mesh();
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
+    const double step0 = model.stable_step(u).step_s;
+    for (int n = 0; n < model.dofs() / 2; ++n)
+      if (n != mesh.impactor_node) u.segment<2>(2 * n) = -0.25 * mesh.nodes[n];
+    u(model.impactor_dof()) = 0.02;  // out of the way
+    SystemEvaluation ev;
+    model.evaluate(u, false, ev);
+    model.commit(u);
+    model.evaluate(u, true, ev);  // zero increment: the tangent of the committed state
+    const double truth = omega_max(model);
+    const StableStep s = model.stable_step(u);
+    EXPECT_GE(2 / s.step_s, truth * (1 - 1e-9)) << s.limited_by;
+    EXPECT_LE(2 / s.step_s, 2 * truth) << s.limited_by;
+    // The thickening shortens the step by about √λ3 (the bound before this change did not).
+    EXPECT_LT(s.step_s, step0 / 1.08);
+  }
+}
+
 TEST(ChainModel, TangentWithInnerWallContactMatchesFiniteDifferences) {
   // A ring squeezed flat until its inner walls overlap at the centre (y → y (r − ri − δ)/r,
   // elastic material so that the force is smooth): the inner-wall contact's tangent.
