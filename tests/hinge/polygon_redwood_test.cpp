@@ -9,43 +9,27 @@
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/redwood_hinge_length.hpp"
 #include "hinge/ring_laws.hpp"
+#include "quasi_static_ring.hpp"
 
 using namespace ringcrush::hinge;
 
 namespace {
 
-const RingSection section{0.0508, 0.0016, 0.0125};
+const RingSection& section = plates_crush::test30_section;
 constexpr double kHardening = 2.224e9;  // E′ of the thesis table (slope)
 
 struct Band {
   double mean = 0, low = 1e9, high = 0;  // P / P_Redwood over δ/d ∈ [0.2, 0.5]
 };
 
-// As the DeRuntz–Hodge check of polygon_ring_test.cpp: driven plate at 1 m/s, light mass
-// damping, rate-independent limit of the flow law; the load is averaged over δ/d ∈ [0.2, 0.5]
-// because it saw-tooths as a travelling hinge passes a node.
+// The band of quasi_static_ring.hpp, as the DeRuntz–Hodge check of polygon_ring_test.cpp.
 Band redwood_band(int nodes, double alpha, bool fitted) {
   PolygonChainInput in;
-  in.rings = 1;
   in.nodes_per_ring = nodes;
-  in.driven_impactor = true;
-  in.drive_speed_m_s = 1.0;
-  in.drive_ramp_s = 1e-3;
-  in.mass_damping_per_s = 200.0;
   in.hardening_modulus_pa = kHardening;
   in.redwood_alpha = alpha;
   in.redwood_fitted_hardening = fitted;
-  in.cowper_symonds_d_per_s = 1e5;
-  in.cowper_symonds_q = 1.0;
-  in.membrane_damping_ratio = 1.0;
-  in.hinge_damping_ratio = 1.0;
-  PolygonRunOptions o;
-  o.end_time_s = in.drive_ramp_s + 0.52 * section.mean_diameter() / in.drive_speed_m_s;
-  o.stop_at_arrest = false;
-  o.output_interval_s = o.end_time_s / 500;
-  o.relative_tolerance = 1e-4;
-  o.absolute_scale = 1e-4;
-  const auto out = run_polygon_chain(in, o);
+  const auto out = plates_crush::crush_between_plates(in, 1e-4);
   const double d = section.mean_diameter();
   const double P0 = collapse_load(plastic_moment(section, in.yield_stress_pa, SectionState::PlaneStress), d);
   Band b;

@@ -9,6 +9,7 @@
 
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/ring_laws.hpp"
+#include "quasi_static_ring.hpp"
 
 using namespace ringcrush::hinge;
 
@@ -21,7 +22,7 @@ PolygonChainInput test30_ring(int nodes) {
   return in;
 }
 
-const RingSection section{0.0508, 0.0016, 0.0125};
+const RingSection& section = plates_crush::test30_section;
 
 // Diametral stiffness of the half model: the top node loaded, the bottom node held; K by
 // finite differences of the generalised forces (perturbing away from the plates, which touch
@@ -55,28 +56,12 @@ struct QuasiStatic {
   double min_ratio, max_ratio;
 };
 
-// Driven top plate at 1 m/s (ramped over 1 mm) with light mass-proportional damping
-// (200 s⁻¹: ≈ 0.6 % of P0 as drag); rigid–perfectly-plastic hinges in the rate-independent
-// limit (Perzyna q = 1, D = 1e5 s⁻¹: overstress ≈ 1e-4). The load is averaged over
-// δ/d ∈ [0.2, 0.5] because it saw-tooths (−5 %…+11 %) as the travelling hinge passes a node.
+// The load is averaged over δ/d ∈ [0.2, 0.5] (quasi_static_ring.hpp), rigid–perfectly-plastic
+// hinges.
 QuasiStatic quasi_static(int nodes, double rtol) {
   auto in = test30_ring(nodes);
-  in.driven_impactor = true;
-  in.drive_speed_m_s = 1.0;
-  in.drive_ramp_s = 1e-3;
-  in.mass_damping_per_s = 200.0;
   in.hardening_modulus_pa = 0.0;
-  in.cowper_symonds_d_per_s = 1e5;
-  in.cowper_symonds_q = 1.0;
-  in.membrane_damping_ratio = 1.0;
-  in.hinge_damping_ratio = 1.0;
-  PolygonRunOptions o;
-  o.end_time_s = in.drive_ramp_s + 0.52 * section.mean_diameter() / in.drive_speed_m_s;
-  o.stop_at_arrest = false;
-  o.output_interval_s = o.end_time_s / 500;
-  o.relative_tolerance = rtol;
-  o.absolute_scale = rtol;
-  const auto out = run_polygon_chain(in, o);
+  const auto out = plates_crush::crush_between_plates(in, rtol);
   const double d = section.mean_diameter();
   const double M0 = plastic_moment(section, in.yield_stress_pa, SectionState::PlaneStress);
   const double P0 = collapse_load(M0, d);
