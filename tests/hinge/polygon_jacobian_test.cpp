@@ -19,30 +19,14 @@
 #include <random>
 #include <vector>
 
+#include "two_ring_chain.hpp"
 #include "hinge/polygon_simulation.hpp"
 
 using namespace ringcrush::hinge;
 
 namespace {
 
-PolygonChainInput two_rings(PolygonJoint joint) {
-  PolygonChainInput in;  // the Test 30 ring, plane stress, Level 2 defaults
-  in.rings = 2;
-  in.nodes_per_ring = 48;
-  in.joint = joint;
-  in.plate_mass_kg = 0.01;
-  in.plate_thickness_m = 0.002;
-  in.impactor_mass_kg = 0.257;
-  in.impactor_velocity_m_s = 27.7;
-  in.hardening_modulus_pa = 2.2e9;
-  in.yield_cap_ratio = 320.0 / 273.0;
-  in.redwood_alpha = 2.0;
-  in.cowper_symonds_d_per_s = 1e4;
-  in.cowper_symonds_q = 1.0;
-  in.membrane_damping_ratio = 1.0;
-  in.hinge_damping_ratio = 1.0;
-  return in;
-}
+PolygonChainInput two_rings(PolygonJoint joint) { return two_ring_chain::input(joint); }
 
 struct Agreement {
   double worst_row = 0.0;  // max over checked state rows of |Jδ − Dδ| / Σ|J_ij δ_j|

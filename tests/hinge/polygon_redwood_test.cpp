@@ -18,9 +18,7 @@ namespace {
 const RingSection& section = plates_crush::test30_section;
 constexpr double kHardening = 2.224e9;  // E′ of the thesis table (slope)
 
-struct Band {
-  double mean = 0, low = 1e9, high = 0;  // P / P_Redwood over δ/d ∈ [0.2, 0.5]
-};
+using Band = plates_crush::LoadBand;  // P / P_Redwood over δ/d ∈ [0.2, 0.5]
 
 // The band of quasi_static_ring.hpp, as the DeRuntz–Hodge check of polygon_ring_test.cpp.
 Band redwood_band(int nodes, double alpha, bool fitted) {
@@ -32,21 +30,10 @@ Band redwood_band(int nodes, double alpha, bool fitted) {
   const auto out = plates_crush::crush_between_plates(in, 1e-4);
   const double d = section.mean_diameter();
   const double P0 = collapse_load(plastic_moment(section, in.yield_stress_pa, SectionState::PlaneStress), d);
-  Band b;
-  int count = 0;
-  const auto& h = out.history;
-  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
-    const double delta = h.impactor_displacement_m[i];
-    if (delta < 0.2 * d || delta > 0.5 * d) continue;
-    const double r = h.impactor_force_n[i] / redwood_load(P0, kHardening, in.yield_stress_pa, alpha, delta, d);
-    b.mean += r;
-    b.low = std::min(b.low, r);
-    b.high = std::max(b.high, r);
-    ++count;
-  }
-  EXPECT_GT(count, 100);
-  b.mean /= count;
-  return b;
+  const auto band = plates_crush::load_band(
+      out, [&](double delta) { return redwood_load(P0, kHardening, in.yield_stress_pa, alpha, delta, d); });
+  EXPECT_GT(band.samples, 100);
+  return band;
 }
 
 }  // namespace

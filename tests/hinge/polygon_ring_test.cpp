@@ -65,21 +65,9 @@ QuasiStatic quasi_static(int nodes, double rtol) {
   const double d = section.mean_diameter();
   const double M0 = plastic_moment(section, in.yield_stress_pa, SectionState::PlaneStress);
   const double P0 = collapse_load(M0, d);
-  QuasiStatic q{0, 1e9, 0};
-  int count = 0;
-  const auto& h = out.history;
-  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
-    const double delta = h.impactor_displacement_m[i];
-    if (delta < 0.2 * d || delta > 0.5 * d) continue;
-    const double ratio = h.impactor_force_n[i] / deruntz_hodge_load(P0, delta, d);
-    q.mean_ratio += ratio;
-    q.min_ratio = std::min(q.min_ratio, ratio);
-    q.max_ratio = std::max(q.max_ratio, ratio);
-    ++count;
-  }
-  EXPECT_GT(count, 100);
-  q.mean_ratio /= count;
-  return q;
+  const auto b = plates_crush::load_band(out, [&](double delta) { return deruntz_hodge_load(P0, delta, d); });
+  EXPECT_GT(b.samples, 100);
+  return {b.mean, b.low, b.high};
 }
 
 }  // namespace

@@ -6,6 +6,9 @@
 // checks average it over a band of δ/d.
 #pragma once
 
+#include <algorithm>
+#include <functional>
+
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/ring_laws.hpp"
 
@@ -30,6 +33,30 @@ inline PolygonRunOutput crush_between_plates(PolygonChainInput in, double rtol) 
   o.relative_tolerance = rtol;
   o.absolute_scale = rtol;
   return run_polygon_chain(in, o);
+}
+
+// P / P_reference(δ) over δ/d ∈ [0.2, 0.5] of a crush_between_plates run: mean, extremes
+// and the number of samples.
+struct LoadBand {
+  double mean = 0, low = 1e300, high = 0;
+  int samples = 0;
+};
+
+inline LoadBand load_band(const PolygonRunOutput& out, const std::function<double(double)>& reference) {
+  const double d = test30_section.mean_diameter();
+  LoadBand b;
+  const auto& h = out.history;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    const double delta = h.impactor_displacement_m[i];
+    if (delta < 0.2 * d || delta > 0.5 * d) continue;
+    const double r = h.impactor_force_n[i] / reference(delta);
+    b.mean += r;
+    b.low = std::min(b.low, r);
+    b.high = std::max(b.high, r);
+    ++b.samples;
+  }
+  if (b.samples > 0) b.mean /= b.samples;
+  return b;
 }
 
 }  // namespace ringcrush::hinge::plates_crush
