@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -28,6 +29,25 @@ inline std::string read_text(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// The comma-separated numbers of one line (deck data lines, CSV rows).
+inline std::vector<double> numbers(const std::string& line) {
+  std::vector<double> v;
+  std::string item;
+  std::istringstream in(line);
+  while (std::getline(in, item, ',')) v.push_back(std::strtod(item.c_str(), nullptr));
+  return v;
+}
+
+// The numeric rows of a CSV file after its header line (history.csv).
+inline std::vector<std::vector<double>> csv_rows(const fs::path& p) {
+  std::vector<std::vector<double>> rows;
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) rows.push_back(numbers(line));
+  return rows;
 }
 
 // `source` (relative to the source tree) with each (regex, replacement) applied in order,

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ccx_testing.hpp"
 #include "command_run.hpp"
 #include "compare/calculix_deck_parts.hpp"
 #include "compare/calculix_export.hpp"
@@ -54,13 +55,7 @@ std::multimap<std::string, std::vector<std::string>> deck_blocks(const std::stri
   return out;
 }
 
-std::vector<double> numbers(const std::string& line) {
-  std::vector<double> v;
-  std::string item;
-  std::istringstream in(line);
-  while (std::getline(in, item, ',')) v.push_back(std::strtod(item.c_str(), nullptr));
-  return v;
-}
+using test_files::numbers;
 
 const std::vector<std::string>& block(const std::multimap<std::string, std::vector<std::string>>& b,
                                       const std::string& key) {
@@ -254,16 +249,13 @@ TEST(CalculixDynamicExport, ParsesCcxNodeVectors) {
 // stress with the selective scheme and HRZ lumped mass) and by the step control; measured:
 // Δv 0.546 m/s (ccx) against 0.516 m/s (ringcrush), 6 %.
 TEST(CalculixDynamicExport, CcxImpactorMotionAgreesWithRingcrush) {
-  if (std::system("command -v ccx > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "ccx (CalculiX) is not on PATH; install it with `apt-get install calculix-ccx` (Debian) to run "
-                    "the cross-check";
+  if (!ccx_testing::ccx_on_path()) GTEST_SKIP() << ccx_testing::kMissing;
   const fs::path dir = scratch("ccx");
   const double end = 5e-5;
   const fs::path scene = coarse_chain(dir, "1", "0.00005");
   auto r = cli_testing::ringcrush("export-calculix " + scene.string() + " -o " + (dir / "ccx").string());
   ASSERT_EQ(r.status, 0) << r.output;
-  const std::string cmd = "cd " + (dir / "ccx").string() + " && ccx -i chain > ccx.log 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << test_files::read_text(dir / "ccx" / "ccx.log");
+  ASSERT_TRUE(ccx_testing::run_ccx(dir / "ccx", "chain")) << test_files::read_text(dir / "ccx" / "ccx.log");
   const std::string dat = test_files::read_text(dir / "ccx" / "chain.dat");
   const auto u = ringcrush::compare::parse_ccx_node_vectors(dat, "displacements", "IMPACTOR_REF");
   const auto v = ringcrush::compare::parse_ccx_node_vectors(dat, "velocities", "IMPACTOR_REF");
@@ -274,13 +266,7 @@ TEST(CalculixDynamicExport, CcxImpactorMotionAgreesWithRingcrush) {
   r = cli_testing::ringcrush("fe " + scene.string() + " -q -o " + (dir / "fe").string());
   ASSERT_EQ(r.status, 0) << r.output;
   // history.csv: time_s, impactor_displacement_m, impactor_velocity_m_s, ... ; interpolate at end
-  std::vector<std::vector<double>> rows;
-  {
-    std::ifstream in(dir / "fe" / "history.csv");
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) rows.push_back(numbers(line));
-  }
+  const auto rows = test_files::csv_rows(dir / "fe" / "history.csv");
   ASSERT_GE(rows.size(), 2u);
   double fe_u = std::nan(""), fe_v = std::nan("");
   for (std::size_t i = 1; i < rows.size(); ++i)

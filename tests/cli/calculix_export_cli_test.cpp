@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "ccx_testing.hpp"
 #include "command_run.hpp"
 #include "compare/calculix_export.hpp"
 #include "compare/fe_static.hpp"
@@ -63,13 +64,7 @@ std::multimap<std::string, std::vector<std::string>> deck_blocks(const std::stri
   return out;
 }
 
-std::vector<double> numbers(const std::string& line) {
-  std::vector<double> v;
-  std::string item;
-  std::istringstream in(line);
-  while (std::getline(in, item, ',')) v.push_back(std::strtod(item.c_str(), nullptr));
-  return v;
-}
+using test_files::numbers;
 
 // Linear interpolation of y(x) on an increasing x table.
 double at(const std::vector<double>& x, const std::vector<double>& y, double xq) {
@@ -291,16 +286,13 @@ TEST(CalculixExport, ParsesCcxTotalForces) {
 
 // The cross-check itself: ccx on the exported deck against ringcrush's FE on the same mesh.
 TEST(CalculixExport, CcxLoadAgreesWithRingcrushWithinTenPercent) {
-  if (std::system("command -v ccx > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "ccx (CalculiX) is not on PATH; install it with `apt-get install calculix-ccx` (Debian) to run "
-                    "the cross-check";
+  if (!ccx_testing::ccx_on_path()) GTEST_SKIP() << ccx_testing::kMissing;
   const fs::path dir = scratch("ccx");
   const fs::path scene = coarse_scene(dir);
   auto r = run_cli("export-calculix " + scene.string() + " -o " + (dir / "ccx").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string cmd = "cd " + (dir / "ccx").string() + " && ccx -i thesis_coarse > ccx.log 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "ccx" / "ccx.log");
+  ASSERT_TRUE(ccx_testing::run_ccx(dir / "ccx", "thesis_coarse")) << read_text(dir / "ccx" / "ccx.log");
   const double ccx_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto forces = ringcrush::compare::parse_ccx_total_forces(read_text(dir / "ccx" / "thesis_coarse.dat"),
                                                                  "PLATE_TOP_NODES");
@@ -309,15 +301,9 @@ TEST(CalculixExport, CcxLoadAgreesWithRingcrushWithinTenPercent) {
   r = run_cli("fe " + scene.string() + " -q -o " + (dir / "fe").string());
   ASSERT_EQ(r.status, 0) << r.output;
   std::vector<double> fe_delta, fe_force;
-  {
-    std::ifstream in(dir / "fe" / "history.csv");
-    std::string line;
-    std::getline(in, line);  // header: deflection_m, force_N, ...
-    while (std::getline(in, line)) {
-      const auto v = numbers(line);
-      fe_delta.push_back(v.at(0));
-      fe_force.push_back(v.at(1));
-    }
+  for (const auto& v : test_files::csv_rows(dir / "fe" / "history.csv")) {  // deflection_m, force_N, ...
+    fe_delta.push_back(v.at(0));
+    fe_force.push_back(v.at(1));
   }
   const ringcrush::compare::Scene s = ringcrush::compare::load_scene(scene);
   const ringcrush::compare::CalculixDeck deck = ringcrush::compare::calculix_deck(s);
