@@ -272,14 +272,16 @@ class Bench {
     std::fflush(stdout);
   }
 
-  BenchRow fe_dynamic_row(const std::string& group, const Scene& s, const std::string& integ,
-                          const std::string& control, std::optional<double> tol, const Timing& t, const RunResult& run,
-                          const RunResult& reference) {
+  // A timed run's row: what was run, its cost, its error against `reference` and its measures.
+  static BenchRow timed_row(const std::string& group, const std::string& model, const std::string& scene,
+                            const std::string& level_or_mesh, const std::string& integ, const std::string& control,
+                            std::optional<double> tol, const Timing& t, const RunResult& run,
+                            const RunResult& reference) {
     BenchRow r;
     r.group = group;
-    r.model = "fe";
-    r.scene = s.name;
-    r.level_or_mesh = mesh_label(s);
+    r.model = model;
+    r.scene = scene;
+    r.level_or_mesh = level_or_mesh;
     r.integrator = integ;
     r.control = control;
     r.tolerance = tol;
@@ -289,6 +291,12 @@ class Bench {
     r.error = run_errors(run, reference);
     r.measures = run_measures(run);
     return r;
+  }
+
+  BenchRow fe_dynamic_row(const std::string& group, const Scene& s, const std::string& integ,
+                          const std::string& control, std::optional<double> tol, const Timing& t, const RunResult& run,
+                          const RunResult& reference) {
+    return timed_row(group, "fe", s.name, mesh_label(s), integ, control, tol, t, run, reference);
   }
 
   std::optional<RunResult> fe_row(const Scene& s, const std::string& integ, const std::string& control, double value,
@@ -307,21 +315,10 @@ class Bench {
 
   void add_hinge_row(const std::string& level, const std::string& integ, double rtol, const Timing& t,
                      const RunResult& run, const RunResult& reference, bool is_reference) {
-    BenchRow r;
-    r.group = "work_precision";
-    r.model = "hinge";
-    r.scene = p_.impact.name;
-    r.level_or_mesh = "level " + level;
-    r.integrator = integ;
-    r.control = "rtol";
-    r.tolerance = rtol;
+    BenchRow r = timed_row("work_precision", "hinge", p_.impact.name, "level " + level, integ, "rtol", rtol, t, run,
+                           reference);
     r.reference = is_reference;
-    r.repeats = t.repeats;
-    r.wall_s = t.wall_s;
-    r.cpu_s = t.cpu_s;
-    r.error = run_errors(run, reference);
     if (fe_reference_) r.model_error = run_errors(run, *fe_reference_);
-    r.measures = run_measures(run);
     rows.push_back(r);
     print_last();
   }
@@ -339,20 +336,10 @@ class Bench {
         return rr;
       }, run, repeat_below_cpu_s);
       if (is_reference) static_reference_ = run;
-      BenchRow r;
-      r.group = group;
-      r.model = "fe";
-      r.scene = s.name;
-      r.level_or_mesh = mesh_label(s);
-      r.integrator = "static";
-      r.control = control;
+      BenchRow r = timed_row(group, "fe", s.name, mesh_label(s), "static", control, std::nullopt, t, run,
+                             static_reference_ ? *static_reference_ : run);
       r.reference = is_reference;
-      r.repeats = t.repeats;
-      r.wall_s = t.wall_s;
-      r.cpu_s = t.cpu_s;
       r.bytes_written = bytes;
-      r.error = run_errors(run, static_reference_ ? *static_reference_ : run);
-      r.measures = run_measures(run);
       rows.push_back(r);
       print_last();
     } catch (const std::exception& e) {
