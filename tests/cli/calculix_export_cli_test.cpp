@@ -47,22 +47,7 @@ fs::path coarse_scene(const fs::path& dir, const test_files::Edits& more = {}) {
   return test_files::edited_scene("data/scenes/thesis_static.toml", dir / "thesis_coarse.toml", edits);
 }
 
-// The data lines under each keyword line of a deck, keyed by the keyword line (upper case,
-// as written); repeated keywords append.
-std::multimap<std::string, std::vector<std::string>> deck_blocks(const std::string& deck) {
-  std::multimap<std::string, std::vector<std::string>> out;
-  std::istringstream in(deck);
-  std::vector<std::string>* cur = nullptr;
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("**", 0) == 0) continue;
-    if (!line.empty() && line[0] == '*') {
-      cur = &out.emplace(line, std::vector<std::string>{})->second;
-    } else if (cur) {
-      cur->push_back(line);
-    }
-  }
-  return out;
-}
+using ccx_testing::deck_blocks;
 
 using test_files::numbers;
 
