@@ -138,6 +138,41 @@ TEST(RingCrush, ThesisCrushAgainstDeRuntzHodgeAndRedwood) {
               fit.min_ratio_to_deruntz_hodge);
 }
 
+// (g) as the issue words it, on the material Redwood's formula assumes. Redwood's curve is
+// the power balance of side hinges hardening linearly without limit (THEORY §1.4); the
+// thesis table stops hardening at 2.1 % plastic strain, so the thesis crush cannot be
+// within 15 % of it for α ≤ 4 (test above). Here the same ring and mesh with the table's
+// first slope E′ carried on (rigid-linear hardening, σ0 and E′ unchanged, so Redwood's curve
+// is the same function): the FE then lies within ±15 % of Redwood's curve for the best α in
+// the issue's [0.5, 4] — the deviation above is the material, not the element.
+TEST(RingCrush, LinearHardeningRingFollowsRedwoodWithAlphaInIssueRange) {
+  auto scene = thesis_scene();
+  auto& table = scene.rings.material.hardening;
+  const double e_t = scene.rings.material.hardening_modulus();
+  ASSERT_GT(e_t, 0.0);
+  table = {table.front(), {table.front().yield_stress_pa + e_t * 1.0, 1.0}};
+  ASSERT_NEAR(scene.rings.material.hardening_modulus(), e_t, 1e-6 * e_t);
+  const auto ref = reference(scene);
+  fe::FeInput in = compare::fe_static_input(scene);
+  in.solver.frames = 0;
+  in.mesh.elements_around = 44;
+  in.mesh.elements_through = 2;
+  in.solver.crush_m = 0.72 * ref.d;
+  const auto r = fe::run_static(in);
+  std::vector<double> x, p;
+  for (const auto& h : r.history) {
+    x.push_back(h.deflection_m);
+    p.push_back(h.force_n);
+  }
+  const auto fit = compare::fit_redwood(scene, x, p, 0.1, 0.7, 0.5, 4.0);
+  std::printf("linear hardening: Redwood best alpha in [0.5, 4] %.3f (max dev %.3f, rms %.3f); min P/P_DH %.3f\n",
+              fit.alpha, fit.max_relative_deviation, fit.rms_relative_deviation, fit.min_ratio_to_deruntz_hodge);
+  RecordProperty("linear_hardening_redwood_alpha", std::to_string(fit.alpha));
+  RecordProperty("linear_hardening_redwood_max_deviation", std::to_string(fit.max_relative_deviation));
+  EXPECT_GT(fit.min_ratio_to_deruntz_hodge, 1.0);
+  EXPECT_LT(fit.max_relative_deviation, 0.15) << "best alpha " << fit.alpha;
+}
+
 // (f) Mesh convergence of the thesis crush (the suite's version of `ringcrush
 // bench-fe-static`): the thesis mesh refined 2× and 3× in both directions; the loads at
 // δ/d = 0.3 and 0.6 of the two finest differ by less than 2 %, and the coarse thesis mesh
