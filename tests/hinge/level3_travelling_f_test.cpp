@@ -89,18 +89,20 @@ TEST(Level3TravellingF, ShearFreeFAtOnsetIsTheLeastOnsetLoadF) {
 // shear-free condition of a hinge at a corner), so the global search keeps F there through
 // the whole wrap — the thesis's "hinges oscillate about fixed positions without travelling
 // far" (§4.2.3). Consequence checked: θ_F constant along the trace, and the traced wrap
-// equals the fixed-F wrap at that θ_F (load and crush to 1e-3; the fixed table's first node
-// is a one-sided difference and is left out).
+// equals the fixed-F wrap at that θ_F (crush at equal κ_B and load at equal crush to 1e-3,
+// the fixed table 10× finer since its loads are differences of its work; its first node is
+// a one-sided difference and is left out).
 TEST(Level3TravellingF, FOncePlasticIsPinnedByItsOwnCorner) {
   const auto w = level3_travelling_wrap_mechanism(kRing);
   const double th = w.hinge_f.front();
   for (double t : w.hinge_f) EXPECT_NEAR(t, th, 1e-9);
   EXPECT_NEAR(th, level3_onset_shear_free_rate(kRing).theta_f, 1e-9);
-  const auto fixed = level3_wrap_mechanism(kRing, th, static_cast<int>(w.crush.size()) - 1);
-  ASSERT_EQ(fixed.crush.size(), w.crush.size());
+  const int per = 10;  // fixed table 10× finer in κ: node per·j has the trace's κ_B of node j
+  const auto fixed = level3_wrap_mechanism(kRing, th, per * (static_cast<int>(w.crush.size()) - 1));
+  ASSERT_EQ(fixed.crush.size(), static_cast<std::size_t>(per) * (w.crush.size() - 1) + 1);
   for (std::size_t j = 1; j < w.crush.size(); ++j) {
-    EXPECT_NEAR(w.crush[j], fixed.crush[j], 1e-3 * fixed.crush[j]) << j;
-    EXPECT_NEAR(w.load[j], fixed.load[j], 1e-3 * fixed.load[j]) << j;
+    EXPECT_NEAR(w.crush[j], fixed.crush[per * j], 1e-3 * fixed.crush[per * j]) << j;
+    EXPECT_NEAR(w.load[j], fixed.load_at(w.crush[j]), 1e-3 * w.load[j]) << j;
   }
   const std::size_t j = w.crush.size() / 2;
   const double e = 0.2 * pi / 180.0, p = level3_wrap_rate(kRing, w.tangent[j], th, w.cell_edges).load;
@@ -158,7 +160,9 @@ TEST(Level3TravellingF, EnergyBalanceTest30WeldedShearFree) {
     const auto res = simulate_level3(in, o);
     EXPECT_LT(res.energy_balance_error(), 1e-7);
     EXPECT_NEAR(res.history.plastic_j.back(), res.plastic_work_closed_form_j, 1e-6 * res.initial_kinetic_energy_j);
-    if (v > 40.0) EXPECT_TRUE(res.rings[0].wrap_started);
+    if (v > 40.0) {
+      EXPECT_TRUE(res.rings[0].wrap_started);
+    }
   }
 }
 
