@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include "compare/hinge_run_level3.hpp"
@@ -175,4 +177,31 @@ TEST(Level3TravellingF, FixedThetaAndShearFreeConflict) {
   in.theta_f = 2.3;
   in.hinge_f = Level3HingeF::ShearFree;
   EXPECT_THROW(in.validate(), std::invalid_argument);
+}
+
+// The scene keys ([hinge] level3_hinge_f, level3_theta_f_deg) reach the run, and a fixed θ_F
+// with the shear-free placement, or a θ_F outside (90°, 180°), is refused naming the key.
+TEST(Level3TravellingF, SceneKeysSelectHowFIsPlaced) {
+  std::ifstream in(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  const std::string base((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto with_hinge = [&](const std::string& keys) {
+    const std::string anchor = "[hinge]\n";
+    std::string t = base;
+    t.insert(t.find(anchor) + anchor.size(), keys);
+    return compare::parse_scene(t, "level3.toml");
+  };
+  const auto sf = with_hinge("level3_hinge_f = \"shear_free\"\n");
+  EXPECT_EQ(compare::level3_input(sf).hinge_f, Level3HingeF::ShearFree);
+  const auto fixed = with_hinge("level3_theta_f_deg = 140.0   # F fixed\n");
+  EXPECT_NEAR(compare::level3_input(fixed).theta_f * 180.0 / pi, 140.0, 1e-12);
+  EXPECT_NEAR(compare::level3_input(fixed, {125.0, true}).theta_f * 180.0 / pi, 125.0, 1e-12);  // run option wins
+  for (const char* bad : {"level3_hinge_f = \"shear_free\"\nlevel3_theta_f_deg = 140.0\n", "level3_theta_f_deg = 80.0\n",
+                          "level3_hinge_f = \"travelling\"\n"}) {
+    try {
+      with_hinge(bad);
+      ADD_FAILURE() << bad;
+    } catch (const compare::SceneError& e) {
+      EXPECT_NE(e.key().find("level3_"), std::string::npos) << e.what();
+    }
+  }
 }
