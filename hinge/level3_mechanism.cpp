@@ -192,9 +192,14 @@ double WrapMechanism::energy_at(double q) const {
 }
 
 double level3_optimal_theta_f(const Level3Ring& r) {
+  // Onset load of the fixed-F wrap: the table's loads are differences of its work, so the
+  // first node's is the average over the first step (biased by half a step of the steeply
+  // falling load, which moved this minimum by 1.4°); Richardson's extrapolation of the
+  // one-, two- and four-step differences (errors a·kh + b·(kh)²) removes it to O(h³).
   auto onset = [&](double th) {
     const auto w = level3_wrap_mechanism(r, th, 40);
-    return w.load.front();
+    auto diff = [&](std::size_t k) { return (w.dissipation[k] - w.dissipation[0]) / (w.crush[k] - w.crush[0]); };
+    return (8.0 * diff(1) - 6.0 * diff(2) + diff(4)) / 3.0;
   };
   double a = 100.0 * pi / 180.0, b = 170.0 * pi / 180.0;
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);

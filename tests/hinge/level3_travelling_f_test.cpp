@@ -78,6 +78,8 @@ TEST(Level3TravellingF, ShearFreeFAtOnsetIsTheLeastOnsetLoadF) {
   const double slope = (level3_wrap_rate(kRing, beta, sf.theta_f + e).load -
                         level3_wrap_rate(kRing, beta, sf.theta_f - e).load) / (2.0 * e);
   EXPECT_LT(std::abs(slope), 1e-3 * sf.load);
+  // The fixed mode's own least-onset search (40-sample table, Richardson onset) agrees too.
+  EXPECT_NEAR(level3_optimal_theta_f(kRing) * 180.0 / pi, sf.theta_f * 180.0 / pi, 0.1);
   const WrapRate cells = level3_shear_free_rate(kRing, beta);
   EXPECT_NEAR(cells.theta_f, sf.theta_f, 0.125 * pi / 180.0);
   EXPECT_NEAR(cells.load, sf.load, 1e-4 * sf.load);
