@@ -114,6 +114,11 @@ TEST(Level3TravellingF, FOncePlasticIsPinnedByItsOwnCorner) {
   const double right = (level3_wrap_rate(kRing, w.tangent[j], th + e, w.cell_edges).load - p) / e;
   EXPECT_LT(left, -0.1 * p);
   EXPECT_GT(right, 0.1 * p);
+  // Not a property of the cells: four times finer, F stays put too and the trace converges.
+  const auto fine = level3_travelling_wrap_mechanism(kRing, 60, 360);
+  for (double t : fine.hinge_f) EXPECT_NEAR(t, th, 1e-9);
+  EXPECT_NEAR(fine.capacity(), w.capacity(), 1e-3 * w.capacity());
+  EXPECT_NEAR(fine.load.back(), w.load.back(), 1e-3 * w.load.back());
   // (3) θ_F over the wrap against the thesis's F range (THEORY §4.5: 120–150°).
   EXPECT_GE(th * 180.0 / pi, 120.0);
   EXPECT_LE(th * 180.0 / pi, 150.0);
