@@ -16,9 +16,9 @@
 // Two linear conditions on (ω_C, ω_F): one degree of freedom, load P(u_F) = Ḋ/δ̇ by virtual
 // work (the chain's contact force does work P δ̇).
 //
-// Shear-free F. Let M(u) be a moment field in equilibrium with the loads P (at A and B) that
-// is at yield on the mechanism: M = M0 sgn ω at C and F and on the arc F–B. Virtual power
-// with that field holds for every compatible rate field, so for every u_F
+// Shear-free F. Let M(u) be a moment field in equilibrium with the loads, whose power is
+// P δ̇, that is at yield on the mechanism: M = M0 sgn ω at C and F and on the arc F–B.
+// Virtual power with that field holds for every compatible rate field, so for every u_F
 //   (P/2) δ̇(u_F) = M_C ω_C(u_F) + M(u_F) ω_F(u_F) + ∫_{u_F}^{L} M du,
 // while the kinematic load P_k(u_F) uses M0 in place of M. Differentiating both in u_F at the
 // u_F* where the field is at yield (P_k = P there) and subtracting:
@@ -29,6 +29,11 @@
 // level3_optimal_theta_f). A travelling F is therefore found, at every instant of the wrap,
 // as the θ_F of least instantaneous load on the CURRENT configuration; material passes
 // through the moving hinge and keeps the rotation it received (a spread kink).
+// Caveat: the chain gives the contact's power as P δ̇ (resultant times the rise of B), exact
+// for a point load at B; under a point load the moment is linear in position and cannot stay
+// at M0 along a curved arc (that needs the next ring's pressure spread over F–B, p = −κN with
+// Q = 0), so P_k is an upper bound, and F is placed where that bound is least. The statics
+// check (|M| ≤ M0 along the arc for a given contact distribution) is not built.
 //
 // Tracing: midpoint rule in the curvature at B (c = 1: κ_B falls at unit rate while the arc
 // reaches B), F re-placed at both stages; the closure x_B is restored after each step by a
