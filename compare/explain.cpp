@@ -96,6 +96,12 @@ std::vector<std::string> explain_hinge(const Scene& s) {
   if (s.hinge.level == "2")
     e.push_back(fmt::format("Level 2: {} bars per ring; ring shapes kept at output steps for the measures",
                             s.hinge.nodes_per_ring));
+  else if (s.hinge.level == "3")
+    e.push_back(s.hinge.level3_theta_f_deg >= 0
+                    ? fmt::format("Level 3: wrap hinge F fixed at {:g}° (hinge.level3_theta_f_deg)", s.hinge.level3_theta_f_deg)
+                    : s.hinge.level3_hinge_f == HingeSettings::Level3HingeF::ShearFree
+                          ? std::string("Level 3: wrap hinge F placed by the shear-free condition at every step (hinge.level3_hinge_f)")
+                          : std::string("Level 3: wrap hinge F fixed where the wrap starts at least load (hinge.level3_hinge_f)"));
   else if (s.hinge.level == "0" || s.hinge.level == "1" || s.hinge.level == "shock")
     e.push_back("no ring shapes: this level has a few degrees of freedom per ring, so the wrap flag comes from "
                 "the crush alone (never set)");

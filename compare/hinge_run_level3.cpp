@@ -26,7 +26,15 @@ hinge::Level3Input level3_input(const Scene& scene, const Level3RunOptions& extr
   in.plates = scene.joints.type == JointType::Plates;
   in.impactor_mass_kg = scene.impactor->mass_kg;
   in.impactor_velocity_m_s = scene.impactor->velocity_m_s;
-  if (extra.theta_f_deg >= 0) in.theta_f = extra.theta_f_deg * std::numbers::pi / 180.0;
+  // F: fixed at a given θ_F (the run option, else the scene's [hinge] level3_theta_f_deg),
+  // else placed by [hinge] level3_hinge_f (least onset load, or travelling shear-free).
+  const double theta_f_deg = extra.theta_f_deg >= 0 ? extra.theta_f_deg : scene.hinge.level3_theta_f_deg;
+  in.hinge_f = scene.hinge.level3_hinge_f == HingeSettings::Level3HingeF::ShearFree ? hinge::Level3HingeF::ShearFree
+                                                                                    : hinge::Level3HingeF::LeastOnsetLoad;
+  if (theta_f_deg >= 0) {
+    in.theta_f = theta_f_deg * std::numbers::pi / 180.0;
+    in.hinge_f = hinge::Level3HingeF::LeastOnsetLoad;  // a given θ_F overrides the placement
+  }
   return in;
 }
 
@@ -62,6 +70,14 @@ std::vector<std::array<double, 2>> full_mean_line(const hinge::Level3Shape& s) {
   return p;
 }
 
+// θ_F at the end of the run: of the first ring that wrapped (travelling F moves on), else
+// the onset value.
+double theta_f_final(const hinge::Level3Result& res) {
+  for (const auto& rr : res.rings)
+    if (rr.wrap_started) return rr.wrap_theta_f;
+  return res.theta_f;
+}
+
 }  // namespace
 
 RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const Level3RunOptions& extra) {
@@ -93,7 +109,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
   // frame as Level 2 and the FE: ring 1 centred at y = 0 before the impact, the target fixed,
   // so ring 1's top is at R − (impactor travel) (the massless chain: travel = Σ crush).
   const auto& ring = in.ring;
-  const auto wrap = hinge::level3_wrap_mechanism(ring, res.theta_f);
+  const auto& wrap = res.wrap;
   const double final_travel = h.impactor_displacement_m.empty() ? 0.0 : h.impactor_displacement_m.back();
   const auto final_shapes = chain_shapes(ring, wrap, res.rings, ring.mean_radius() - final_travel);
   std::vector<RingShape> shapes;
@@ -149,6 +165,8 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
              {"relative_tolerance", o.relative_tolerance},
              {"absolute_tolerance", o.absolute_tolerance},
              {"theta_F_deg", res.theta_f * 180.0 / std::numbers::pi},
+             {"hinge_F", in.theta_f >= 0 ? "fixed" : hinge::to_string(in.hinge_f)},
+             {"theta_F_final_deg", theta_f_final(res) * 180.0 / std::numbers::pi},
              {"collapse_load_N", ring.collapse_load()},
              {"wrap_onset_load_N", wrap.load.front()},
              {"wrap_min_load_N", *std::min_element(wrap.load.begin(), wrap.load.end())},

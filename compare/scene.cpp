@@ -396,6 +396,18 @@ Scene parse_scene(const std::string& text, const std::string& file) {
                 (h.redwood_alpha >= 1 && h.redwood_alpha <= 4),
             r, "hardening_length", "\"redwood_fit\" is fitted for redwood_alpha in [1, 4]");
     h.nodes_per_ring = static_cast<int>(r.integer("nodes_per_ring", h.nodes_per_ring));
+    h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
+        "level3_hinge_f",
+        {{"least_onset_load", HingeSettings::Level3HingeF::LeastOnsetLoad},
+         {"shear_free", HingeSettings::Level3HingeF::ShearFree}},
+        h.level3_hinge_f);
+    h.level3_theta_f_deg = r.number("level3_theta_f_deg", h.level3_theta_f_deg);
+    require(h.level3_theta_f_deg < 0 || (h.level3_theta_f_deg > 90 && h.level3_theta_f_deg < 180), r,
+            "level3_theta_f_deg",
+            fmt::format("{} must lie in (90, 180) (or be negative: F placed by level3_hinge_f)", h.level3_theta_f_deg));
+    require(h.level3_theta_f_deg < 0 || h.level3_hinge_f != HingeSettings::Level3HingeF::ShearFree, r,
+            "level3_theta_f_deg",
+            fmt::format("{} fixes F; it cannot be combined with level3_hinge_f = \"shear_free\"", h.level3_theta_f_deg));
     require(h.nodes_per_ring >= 8 && h.nodes_per_ring <= 4096 && h.nodes_per_ring % 4 == 0, r,
             "nodes_per_ring", "must be a multiple of 4 between 8 and 4096");
     r.finish();

@@ -114,6 +114,10 @@ struct HingeSettings {
   // follows Redwood's curve for α (hinge/redwood_hinge_length.hpp).
   enum class HardeningLength { AlphaT, RedwoodFit } hardening_length = HardeningLength::AlphaT;
   int nodes_per_ring = 48;
+  // Level 3 hinge F of the wrap (hinge/level3_mechanism.hpp): fixed where the wrap starts at
+  // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
+  enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;
+  double level3_theta_f_deg = -1.0;
 };
 
 struct Outputs {

@@ -26,6 +26,8 @@ void Level3Input::validate() const {
     throw std::invalid_argument("Level3Input: impactor mass and velocity must be > 0");
   if (theta_f >= 0 && !(theta_f > 0.5 * pi && theta_f < pi))
     throw std::invalid_argument("Level3Input: theta_F must lie in (90°, 180°)");
+  if (theta_f >= 0 && hinge_f == Level3HingeF::ShearFree)
+    throw std::invalid_argument(fmt::format("Level3Input: theta_F = {} rad fixes F, but hinge_f = shear_free makes it travel", theta_f));
 }
 
 std::string to_string(Level3Mode m) {
@@ -190,9 +192,14 @@ double WrapMechanism::energy_at(double q) const {
 }
 
 double level3_optimal_theta_f(const Level3Ring& r) {
+  // Onset load of the fixed-F wrap: the table's loads are differences of its work, so the
+  // first node's is the average over the first step (biased by half a step of the steeply
+  // falling load, which moved this minimum by 1.4°); Richardson's extrapolation of the
+  // one-, two- and four-step differences (errors a·kh + b·(kh)²) removes it to O(h³).
   auto onset = [&](double th) {
     const auto w = level3_wrap_mechanism(r, th, 40);
-    return w.load.front();
+    auto diff = [&](std::size_t k) { return (w.dissipation[k] - w.dissipation[0]) / (w.crush[k] - w.crush[0]); };
+    return (8.0 * diff(1) - 6.0 * diff(2) + diff(4)) / 3.0;
   };
   double a = 100.0 * pi / 180.0, b = 170.0 * pi / 180.0;
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
@@ -430,6 +437,7 @@ class Level3Chain final : public HybridSystem {
     rr.uniform_angle = uniform_phi(s, i);
     rr.bottom_angle = reinforced_[i] ? bottom_psi(s, i) : 0.0;
     rr.wrap_started = wrap_started_[i];
+    rr.wrap_theta_f = wrap_started_[i] ? w_.theta_f_at(rr.wrap_crush_m) : 0.0;
     rr.reinforced = reinforced_[i];
     rr.mode = wrap_started_[i] ? Level3Mode::Wrap : reinforced_[i] ? Level3Mode::Bottom : Level3Mode::Uniform;
     if (wrap_started_[i]) {  // κ between the table's nodes, linear in the wrap crush
@@ -458,7 +466,13 @@ class Level3Chain final : public HybridSystem {
         rr.hinges.push_back({"C", 90.0, fu, 2.0 * phi});
         rr.hinges.push_back({"B", 180.0, fu, 2.0 * phi});
       }
-      if (fw >= 0) {
+      if (fw >= 0 && w_.travelling()) {  // travelling F: rotations accumulated along the trace
+        const std::size_t j = segment(w_.crush, s[4 + 3 * i + kW]);
+        const double arc = w_.dissipation[j] / (2.0 * r_.plastic_moment_nm) - std::abs(w_.rotation_c[j]) - w_.rotation_f[j];
+        rr.hinges.push_back({"C", 90.0, fw, std::abs(w_.rotation_c[j])});
+        rr.hinges.push_back({"F", rr.wrap_theta_f * 180.0 / pi, fw, w_.rotation_f[j]});
+        rr.hinges.push_back({"B", 180.0, fw, arc});
+      } else if (fw >= 0) {
         const double q = s[4 + 3 * i + kW];
         const std::size_t j = segment(w_.crush, q);
         const double kappa = w_.curvature[j], alpha = w_.chord_angle[j];
@@ -510,10 +524,12 @@ double Level3Result::energy_balance_error() const {
 
 Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options, bool record_history) {
   in.validate();
-  const double theta_f = in.theta_f >= 0 ? in.theta_f : level3_optimal_theta_f(in.ring);
-  Level3Chain chain(in, level3_wrap_mechanism(in.ring, theta_f));
   Level3Result res;
-  res.theta_f = theta_f;
+  if (in.theta_f >= 0) res.wrap = level3_wrap_mechanism(in.ring, in.theta_f);
+  else if (in.hinge_f == Level3HingeF::ShearFree) res.wrap = level3_travelling_wrap_mechanism(in.ring);
+  else res.wrap = level3_wrap_mechanism(in.ring, level3_optimal_theta_f(in.ring));
+  res.theta_f = res.wrap.theta_f;
+  Level3Chain chain(in, res.wrap);
   res.initial_kinetic_energy_j = 0.5 * in.impactor_mass_kg * in.impactor_velocity_m_s * in.impactor_velocity_m_s;
   std::vector<double> y(chain.size(), 0.0);
   y[1] = in.impactor_velocity_m_s;
@@ -557,7 +573,41 @@ Level3Shape level3_ring_shape(const Level3Ring& r, const WrapMechanism& w, const
     th.push_back(t);
   }
   double yb;
-  if (s.wrap_started) {
+  if (s.wrap_started && w.travelling()) {
+    // The traced lower quadrant between the two table nodes bracketing κ_B, integrated from
+    // C = (R, 0); the midpoint-rule closure residual (O((h/R)²) R) is taken out linearly in u
+    // so that B is drawn on the axis.
+    const auto& k = w.curvature;  // decreasing
+    std::size_t j = 0;
+    while (j + 2 < k.size() && k[j + 1] > s.wrap_curvature) ++j;
+    const double f = std::clamp((k[j] - s.wrap_curvature) / (k[j] - k[j + 1]), 0.0, 1.0);
+    const auto& b0 = w.tangent[j];
+    const auto& b1 = w.tangent[j + 1];
+    const std::size_t cells = b0.size();
+    const auto& e = w.cell_edges;
+    std::vector<std::array<double, 2>> q(cells + 1, {R, 0.0});
+    for (std::size_t c = 0; c < cells; ++c) {
+      const double b = b0[c] + f * (b1[c] - b0[c]), h = e[c + 1] - e[c];
+      q[c + 1] = {q[c][0] + h * std::cos(b), q[c][1] + h * std::sin(b)};
+    }
+    const double miss = q[cells][0];
+    const int m = 2 * n;
+    for (int p = 1; p <= m; ++p) {  // 2n points at material angles 90° … 180°
+      const double u = 0.5 * pi * R * p / m;
+      const std::size_t c = std::min(segment(e, u), cells - 1);
+      const double fr = std::clamp((u - e[c]) / (e[c + 1] - e[c]), 0.0, 1.0);
+      double x = q[c][0] + fr * (q[c + 1][0] - q[c][0]), y = q[c][1] + fr * (q[c + 1][1] - q[c][1]);
+      x -= miss * u / (0.5 * pi * R);
+      pts.push_back({x, y});
+      th.push_back(0.5 * pi + u / R);
+    }
+    pts.back()[0] = 0.0;
+    yb = q[cells][1];
+    const double lift = R * std::sin(phi);  // the uniform crush done before the wrap (below)
+    for (std::size_t k2 = 0; k2 < pts.size(); ++k2)
+      if (th[k2] > 0.5 * pi) pts[k2][1] += lift * (th[k2] - 0.5 * pi) / (0.5 * pi);
+    yb += lift;
+  } else if (s.wrap_started) {
     const double tf = w.theta_f, S = R * (pi - tf);
     const double L = 2.0 * R * std::sin(0.5 * (tf - 0.5 * pi));
     const WrapState st = wrap_state(R, L, S, s.wrap_curvature);

@@ -21,9 +21,12 @@
 // one alone; mode selection = the admissible mechanism of least load (dissipation rate per
 // unit shortening) at each event. Events: a mechanism reaches F (yield onset), a softening
 // mechanism turns hardening, a mechanism reaches its geometric limit (lock), impactor at
-// rest. Hinge positions: A, C, B fixed by symmetry; θ_F either given or chosen to minimise
+// rest. Hinge positions: A, C, B fixed by symmetry; θ_F given, or chosen once to minimise
 // the wrap onset load (upper-bound theorem: among fixed-hinge mechanisms the one of least
-// load); θ_E is the edge of the held cap and does not rotate in this mechanism set.
+// load), or travelling by the shear-free condition (Level3HingeF::ShearFree,
+// hinge/level3_travelling_f.cpp): at every instant F sits where the virtual-work load of the
+// current configuration is stationary in the hinge position, which is where the shear
+// vanishes at F; θ_E is the edge of the held cap and does not rotate in this mechanism set.
 #pragma once
 
 #include <array>
@@ -54,12 +57,20 @@ double level3_uniform_energy(const Level3Ring& r, double crush);
 
 // The wrap mechanism of the lower arc, tabulated over κ ∈ [1/R, −1/(R+t)].
 struct WrapMechanism {
-  double theta_f = 0.0;               // F (rad from the top apex)
-  std::vector<double> curvature;      // κ_j
+  double theta_f = 0.0;               // F (rad from the top apex); travelling: at the onset
+  std::vector<double> curvature;      // κ_j (travelling: the curvature at B)
   std::vector<double> crush;          // δ_j (rise of B relative to C), increasing
   std::vector<double> dissipation;    // D_j = ∫ M0 (2|dα| + 2|d(κS) − dα| + 2S|dκ|)
   std::vector<double> load;           // dD/dδ at the nodes
   std::vector<double> chord_angle;    // α_j of the rigid chord F→C
+  // Travelling F only (empty for a fixed F): θ_F at each node, the accumulated hinge
+  // rotations at C and F (one half), and the tangent angle of every cell of the lower
+  // quadrant (C → B, edges `cell_edges`) at each node, for the shapes.
+  std::vector<double> hinge_f, rotation_c, rotation_f;
+  std::vector<std::vector<double>> tangent;
+  std::vector<double> cell_edges;  // arc length from C of the cell edges (one more than cells)
+  bool travelling() const { return !tangent.empty(); }
+  double theta_f_at(double q) const;  // θ_F at wrap crush q (linear between the nodes)
   double capacity() const { return crush.back(); }
   // Piecewise-linear load in δ and its exact integral (so the work is consistent).
   double load_at(double q) const;
@@ -70,13 +81,40 @@ WrapMechanism level3_wrap_mechanism(const Level3Ring& r, double theta_f, int sam
 // θ_F ∈ [100°, 170°] minimising the wrap onset load (golden section).
 double level3_optimal_theta_f(const Level3Ring& r);
 
+// Travelling F (hinge/level3_travelling_f.cpp). The lower quadrant C → B as n cells of
+// tangent angle β_k (arc length from C; undeformed β = −π/2 − u/R). The instantaneous wrap
+// mechanism on such a configuration with F at θ_F: C–F turns rigidly about C (rate ω_C),
+// hinge F (ω_F), the arc F–B bends at unit curvature rate; B stays on the axis with a
+// horizontal tangent. load = dissipation rate / rate of rise of B (virtual work). Cells:
+// `edges` (arc length from C, cells + 1 values), or n equal cells if empty.
+struct WrapRate {
+  double theta_f, omega_c, omega_f, crush_rate, load;
+};
+std::vector<double> level3_undeformed_tangent(const Level3Ring& r, int cells);
+WrapRate level3_wrap_rate(const Level3Ring& r, const std::vector<double>& tangent, double theta_f,
+                          const std::vector<double>& edges = {});
+// The shear-free F of the undeformed ring from the closed-form integrals of the circle.
+WrapRate level3_onset_shear_free_rate(const Level3Ring& r);
+// The shear-free F of a configuration: the stationary point (least load) of level3_wrap_rate
+// over θ_F ∈ [91°, 179°].
+WrapRate level3_shear_free_rate(const Level3Ring& r, const std::vector<double>& tangent,
+                                const std::vector<double>& edges = {});
+// The wrap traced with F travelling (shear-free at every step), tabulated as
+// level3_wrap_mechanism (midpoint rule, one step per table interval; n = cells).
+WrapMechanism level3_travelling_wrap_mechanism(const Level3Ring& r, int samples = 60, int cells = 90);
+
+// How F is placed when no θ_F is given.
+enum class Level3HingeF { LeastOnsetLoad, ShearFree };
+std::string to_string(Level3HingeF);
+
 struct Level3Input {
   int rings = 6;
   Level3Ring ring;
   bool plates = false;              // joints are plates: no ring can wrap its neighbour
   double impactor_mass_kg = 0.0;
   double impactor_velocity_m_s = 0.0;
-  double theta_f = -1.0;            // < 0: level3_optimal_theta_f
+  double theta_f = -1.0;            // >= 0: F fixed there; < 0: placed by hinge_f
+  Level3HingeF hinge_f = Level3HingeF::LeastOnsetLoad;
   double theta_e = 0.7853981633974483;  // edge of the held cap (reported only)
   void validate() const;
 };
@@ -92,7 +130,8 @@ struct Level3RingResult {
   double crush_m = 0.0;              // δ_i (approach of the loading points)
   double uniform_crush_m = 0.0, wrap_crush_m = 0.0, bottom_crush_m = 0.0;
   double uniform_angle = 0.0;        // φ
-  double wrap_curvature = 0.0;       // κ of the arc F–B (1/R undeformed)
+  double wrap_curvature = 0.0;       // κ of the arc F–B (1/R undeformed; travelling: at B)
+  double wrap_theta_f = 0.0;         // current θ_F (rad; 0 before the wrap)
   double bottom_angle = 0.0;         // ψ
   Level3Mode mode = Level3Mode::Uniform;  // Wrap if its wrap was selected, Bottom if under a wrap
   bool wrap_started = false;
@@ -122,7 +161,8 @@ struct Level3Result {
   std::vector<Level3RingResult> rings;
   std::vector<Level3Event> events;
   HybridOutcome outcome;
-  double theta_f = 0.0;
+  double theta_f = 0.0;                     // at the wrap onset (travelling F moves on)
+  WrapMechanism wrap;                       // the table the chain ran with
   double initial_kinetic_energy_j = 0.0;
   double plastic_work_closed_form_j = 0.0;  // Σ mechanism works from the final state
   double lock_loss_j = 0.0;                 // kinetic energy lost if the whole chain locks

@@ -2,6 +2,7 @@
 //
 //   ringcrush bench-level3                                   # Test 30 welded, 27.7 m/s
 //   ringcrush bench-level3 data/scenes/test30_welded.toml --repeat 51 --rtol 1e-8
+//   ringcrush bench-level3 --velocity 50 --shear-free         # travelling F, wrap selected
 //
 // Median (and min/max) wall time of --repeat runs per integrator, no history kept, one core.
 #include <fmt/format.h>
@@ -21,13 +22,16 @@ struct BenchLevel3Options {
   int repeat = 21;
   double rtol = 1e-8;
   double velocity = -1.0;
+  bool shear_free = false;  // travelling F (the shear-free trace is part of every run)
 };
 
 void run(const BenchLevel3Options& opt) {
   auto scene = load_scene(opt.scene);
   if (opt.velocity > 0 && scene.impactor) scene.impactor->velocity_m_s = opt.velocity;
-  fmt::print("bench-level3: {} ({} m/s), rtol {:g}, {} runs each\n", scene.name,
-             scene.impactor ? scene.impactor->velocity_m_s : 0.0, opt.rtol, opt.repeat);
+  if (opt.shear_free) scene.hinge.level3_hinge_f = HingeSettings::Level3HingeF::ShearFree;
+  fmt::print("bench-level3: {} ({} m/s), rtol {:g}, {} runs each, hinge F {}\n", scene.name,
+             scene.impactor ? scene.impactor->velocity_m_s : 0.0, opt.rtol, opt.repeat,
+             opt.shear_free ? "shear_free" : "from the scene");
   fmt::print("{:>8} {:>12} {:>10} {:>10} {:>8} {:>8}\n", "path", "median_ms", "min_ms", "max_ms", "steps", "ring1");
   for (auto integ : {HingeIntegrator::Ida, HingeIntegrator::Odeint}) {
     HingeRunOptions o;
@@ -57,6 +61,7 @@ void add_command(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "Runs per integrator (median)")->check(CLI::Range(1, 100000));
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (atol = rtol/100)")->check(CLI::Range(1e-12, 1e-2));
   cmd->add_option("--velocity", o->velocity, "Override the impact speed (m/s)");
+  cmd->add_flag("--shear-free", o->shear_free, "Hinge F travelling by the shear-free condition");
   cmd->callback([o] { run(*o); });
 }
 

@@ -107,13 +107,13 @@ TEST(Level3Chain, WrapMechanismGeometryIsClosedAndInextensible) {
 // Hinge positions (verification e): A, C, B sit on the symmetry axes by construction; F is
 // not imposed but chosen as the position of least wrap onset load. The thesis (THEORY §4.5)
 // places F on the arc C–B at θ_F ∈ 120–150°: that range is the tolerance (the thesis gives
-// no finer location, its figures are unavailable). Measured: θ_F = 132.2°.
+// no finer location, its figures are unavailable). Measured: θ_F = 133.6°.
 TEST(Level3Chain, HingeFFallsInTheThesisRange) {
   const Level3Ring ring{0.0508, 0.0016, 2.184, 1.358};
   const double tf = level3_optimal_theta_f(ring) * 180.0 / pi;
   EXPECT_GE(tf, 120.0);
   EXPECT_LE(tf, 150.0);
-  EXPECT_NEAR(tf, 132.2, 0.5);
+  EXPECT_NEAR(tf, 133.6, 0.5);
 }
 
 // Energy balance (verification c-type): kinetic + plastic work = ½MV² along the run (the
@@ -183,7 +183,7 @@ TEST(Level3Chain, Test30At50MetresPerSecondWrapsAndAlternates) {
     for (const auto& h : hs)
       if (h["hinge"] == "F") {
         has_f = true;
-        EXPECT_NEAR(static_cast<double>(h["angle_deg"]), 132.2, 0.5);
+        EXPECT_NEAR(static_cast<double>(h["angle_deg"]), 133.6, 0.5);
         EXPECT_GT(static_cast<double>(h["first_yield_s"]), 0.0);
       }
     EXPECT_TRUE(has_f);
