@@ -30,12 +30,15 @@ std::string xml_escape(const std::string& s) {
 }
 
 std::vector<double> nice_ticks(double lo, double hi, int target_count) {
-  if (!(hi > lo)) return {lo};
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return {lo};
   const double raw = (hi - lo) / std::max(1, target_count);
   const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
   double step = magnitude;
   for (double m : {1.0, 2.0, 5.0, 10.0})
     if (m * magnitude >= raw) { step = m * magnitude; break; }
+  // A range at the rounding level of its values (a series flat but for the last bits) gives a
+  // step that adding to v no longer changes: the ends are the only honest ticks.
+  if (!(step > 0) || lo + step == lo || hi - step == hi) return {lo, hi};
   std::vector<double> ticks;
   for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step)
     ticks.push_back(std::abs(v) < 1e-12 * step ? 0.0 : v);
@@ -67,8 +70,15 @@ std::string SvgPlot::render(int width, int height) const {
       y0 = std::min(y0, ty(s.y[i])); y1 = std::max(y1, ty(s.y[i]));
     }
   if (!std::isfinite(x0)) { x0 = 0; x1 = 1; y0 = 0; y1 = 1; }
-  if (x1 <= x0) { x0 -= 0.5; x1 += 0.5; }
-  if (y1 <= y0) { y0 -= 0.5; y1 += 0.5; }
+  // A flat series (or one flat to the last few bits): open the axis around its value.
+  auto open_flat = [](double& lo, double& hi) {
+    if (hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi))) return;
+    const double mid = 0.5 * (lo + hi), half = mid != 0.0 ? 0.05 * std::abs(mid) : 0.5;
+    lo = mid - half;
+    hi = mid + half;
+  };
+  open_flat(x0, x1);
+  open_flat(y0, y1);
   if (!log_y_ && y0 > 0 && y0 < 0.3 * y1) y0 = 0;  // start force/energy axes at zero
   const auto xt = nice_ticks(x0, x1), yt = nice_ticks(y0, y1);
   x0 = std::min(x0, xt.front()); x1 = std::max(x1, xt.back());

@@ -119,6 +119,22 @@ TEST(SvgPlot, TicksAreNiceAndCoverTheRange) {
   EXPECT_GE(s.back(), 0.02 - 1e-12);
 }
 
+// A series flat but for its last bits (a Level 3 plated chain at 40 m/s plotted a force whose
+// range was below the rounding of its values): the ticks end, and the plot has finite
+// coordinates instead of hanging in the tick loop.
+TEST(SvgPlot, NearlyFlatSeriesEndsWithFiniteCoordinates) {
+  const double v = 1234.5678;
+  const auto t = nice_ticks(v, std::nextafter(std::nextafter(v, 2 * v), 2 * v));
+  ASSERT_FALSE(t.empty());
+  EXPECT_LE(t.size(), 2u);
+  SvgPlot p("flat", "t (ms)", "F (N)");
+  p.add({"F", {0, 1, 2}, {v, std::nextafter(v, 2 * v), v}});
+  const std::string svg = p.render();
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+  EXPECT_EQ(svg.find("inf"), std::string::npos);
+  EXPECT_NE(svg.find("1234"), std::string::npos);  // the axis opened around the value
+}
+
 TEST(SvgPlot, RendersSeriesLabelsAndEscapes) {
   SvgPlot p("P <vs> δ", "δ (mm)", "P (N)");
   p.add({"DeRuntz–Hodge", {0, 1, 2}, {355, 356, 360}});
