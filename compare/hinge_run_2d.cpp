@@ -131,6 +131,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
                                     : s.default_relative_tolerance;
   po.relative_tolerance = run.relative_tolerance_used;
   po.absolute_scale = 1e-3 * run.relative_tolerance_used;  // × R, V, 1 rad, KE0
+  po.velocity_tolerance_factor = s.velocity_tolerance_factor;
+  po.plastic_tolerance_factor = s.plastic_tolerance_factor;
   po.output_interval_s = s.output_interval_s;
   po.settle_time_s = s.settle_time_s;
   if (is_static) {
@@ -279,6 +281,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"tie_stiffness_scale", s.tie_stiffness_scale},
         {"membrane_damping_ratio", s.membrane_damping_ratio},
         {"hinge_damping_ratio", s.hinge_damping_ratio},
+        {"velocity_tolerance_factor", s.velocity_tolerance_factor},
+        {"plastic_tolerance_factor", s.plastic_tolerance_factor},
         {"wrap_min_inverted_arc_fraction", s.wrap_min_inverted_arc_fraction}}}};
   if (run.relative_tolerance_used != options.relative_tolerance)
     r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",

@@ -146,6 +146,21 @@ std::vector<double> PolygonChain::component_scales() const {
   return s;
 }
 
+std::vector<PolygonChain::Component> PolygonChain::component_kinds() const {
+  std::vector<Component> k(size_, Component::Energy);
+  for (int g = 0; g < n_rings_ * n_ind_; ++g) {
+    const auto o = static_cast<std::size_t>(g) * 6;
+    k[o] = k[o + 1] = Component::Position;
+    k[o + 2] = k[o + 3] = Component::Velocity;
+    k[o + 4] = k[o + 5] = Component::Plastic;
+  }
+  for (int b = 0; b < n_bodies_; ++b) {
+    k[body_offset(b)] = Component::Position;
+    k[body_offset(b) + 1] = Component::Velocity;
+  }
+  return k;
+}
+
 std::vector<double> PolygonChain::initial_state() const {
   std::vector<double> y(size_, 0.0);
   for (int r = 0; r < n_rings_; ++r)

@@ -122,6 +122,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   int body_count() const { return n_bodies_; }
   // Component scales for absolute tolerances (m, m/s, rad, J).
   std::vector<double> component_scales() const;
+  // What each component is (node and body positions, their velocities, hinge θp and ā,
+  // energy accumulators), so that a solver can weigh the kinds differently.
+  enum class Component { Position, Velocity, Plastic, Energy };
+  std::vector<Component> component_kinds() const;
 
   std::vector<double> initial_state() const;
   // y′ at (t, y): the explicit form of the same equations.

@@ -13,6 +13,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
@@ -58,12 +59,16 @@ struct PolygonIdaSolver::Impl {
   Eigen::VectorXd rhs, sol;
   long setups = 0;
   std::string last_message;
+  std::vector<PolygonIdaStep>* step_log = nullptr;
+  N_Vector error_estimate = nullptr, error_weights = nullptr;  // step log only
 
   ~Impl() {
     if (ida) IDAFree(&ida);
     if (ls) SUNLinSolFree(ls);
     if (jacobian) SUNMatDestroy(jacobian);
     if (atol) N_VDestroy(atol);
+    if (error_estimate) N_VDestroy(error_estimate);
+    if (error_weights) N_VDestroy(error_weights);
     if (yp) N_VDestroy(yp);
     if (y) N_VDestroy(y);
     if (context) SUNContext_Free(&context);
@@ -210,6 +215,10 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   m.jacobian_kind = options.jacobian;
   const auto n = static_cast<sunindextype>(system.size());
   if (y0.size() != system.size()) throw std::invalid_argument("PolygonIdaSolver: state size");
+  if (!(options.velocity_tolerance_factor > 0) || !(options.plastic_tolerance_factor > 0))
+    throw std::invalid_argument(fmt::format(
+        "PolygonIdaSolver: velocity_tolerance_factor {} and plastic_tolerance_factor {} must be positive",
+        options.velocity_tolerance_factor, options.plastic_tolerance_factor));
   check(SUNContext_Create(nullptr, &m.context), "SUNContext_Create");
   m.y = N_VNew_Serial(n, m.context);
   m.yp = N_VNew_Serial(n, m.context);
@@ -220,6 +229,12 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   const auto scales = system.component_scales();
   for (std::size_t i = 0; i < scales.size(); ++i)
     N_VGetArrayPointer(m.atol)[i] = options.absolute_scale * scales[i];
+  const auto kinds = system.component_kinds();
+  for (std::size_t i = 0; i < kinds.size(); ++i)
+    if (kinds[i] == PolygonChain::Component::Velocity)
+      N_VGetArrayPointer(m.atol)[i] *= options.velocity_tolerance_factor;
+    else if (kinds[i] == PolygonChain::Component::Plastic)
+      N_VGetArrayPointer(m.atol)[i] *= options.plastic_tolerance_factor;
 
   m.ida = IDACreate(m.context);
   if (!m.ida) throw IdaError("IDACreate", -1, "IDACreate returned no memory");
@@ -233,6 +248,13 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   check(IDASetMaxOrd(m.ida, options.max_order), "IDASetMaxOrd");
   check(IDASetDeltaCjLSetup(m.ida, options.cj_setup_ratio), "IDASetDeltaCjLSetup");
   check(IDASetNonlinConvCoef(m.ida, options.nonlinear_convergence_coefficient), "IDASetNonlinConvCoef");
+  if (options.step_log) {
+    m.step_log = options.step_log;
+    m.error_estimate = N_VNew_Serial(n, m.context);
+    m.error_weights = N_VNew_Serial(n, m.context);
+    if (!m.error_estimate || !m.error_weights)
+      throw IdaError("N_VNew_Serial", -1, "N_VNew_Serial returned no vector");
+  }
   if (options.linear_solver == PolygonLinearSolver::Direct) {
     // jacobian_fn sizes it to the pattern (IDA zeroes all of its room at every setup).
     m.jacobian = SUNSparseMatrix(n, n, 20 * n, CSC_MAT, m.context);
@@ -251,10 +273,47 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
 
 PolygonIdaSolver::~PolygonIdaSolver() = default;
 
+void PolygonIdaSolver::log_step(Impl& m, double t) {
+  PolygonIdaStep step;
+  step.t = t;
+  check(IDAGetLastStep(m.ida, &step.h), "IDAGetLastStep");
+  check(IDAGetLastOrder(m.ida, &step.order), "IDAGetLastOrder");
+  check(IDAGetEstLocalErrors(m.ida, m.error_estimate), "IDAGetEstLocalErrors");
+  check(IDAGetErrWeights(m.ida, m.error_weights), "IDAGetErrWeights");
+  const double* e = N_VGetArrayPointer(m.error_estimate);
+  const double* w = N_VGetArrayPointer(m.error_weights);
+  const auto n = static_cast<long>(N_VGetLength(m.error_estimate));
+  for (long i = 0; i < n; ++i) {
+    const double v = std::abs(e[i] * w[i]);
+    if (v > step.worst_weighted_error) {
+      step.worst_weighted_error = v;
+      step.worst_component = i;
+    }
+  }
+  m.step_log->push_back(step);
+}
+
 double PolygonIdaSolver::advance(double tout) {
   auto& m = *impl_;
   realtype tret = t_;
-  const int flag = IDASolve(m.ida, tout, &tret, m.y, m.yp, IDA_NORMAL);
+  int flag = 0;
+  if (!m.step_log) {
+    flag = IDASolve(m.ida, tout, &tret, m.y, m.yp, IDA_NORMAL);
+  } else {
+    // One step at a time up to tout, then the same interpolation IDA_NORMAL does.
+    realtype treached = t_;
+    check(IDAGetCurrentTime(m.ida, &treached), "IDAGetCurrentTime");
+    while (treached < tout && flag >= 0) {
+      flag = IDASolve(m.ida, tout, &treached, m.y, m.yp, IDA_ONE_STEP);
+      if (flag < 0) break;
+      log_step(m, treached);
+    }
+    tret = treached;
+    if (flag >= 0 && treached >= tout) {
+      check(IDAGetDky(m.ida, tout, 0, m.y), "IDAGetDky");
+      tret = tout;
+    }
+  }
   if (flag < 0) {
     const std::string where = fmt::format("IDASolve at t = {:.9g} s toward {:.9g} s", tret, tout);
     check(flag, where.c_str(), m.last_message);

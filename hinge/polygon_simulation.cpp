@@ -95,6 +95,9 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     io.max_order = options.ida_max_order;
     io.linear_solver = options.ida_linear_solver;
     io.jacobian = options.ida_jacobian;
+    io.step_log = options.ida_step_log;
+    io.velocity_tolerance_factor = options.velocity_tolerance_factor;
+    io.plastic_tolerance_factor = options.plastic_tolerance_factor;
     PolygonIdaSolver ida(chain, 0.0, y, io);
     for (long k = 1; go; ++k) {
       const double t = ida.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));

@@ -16,6 +16,10 @@ struct PolygonRunOptions {
   PolygonIntegrator integrator = PolygonIntegrator::Ida;
   double relative_tolerance = 1e-6;
   double absolute_scale = 1e-6;   // absolute tolerance per component = scale × component scale
+  // IDA only: factors on that absolute tolerance for velocities and for θp, ā
+  // (PolygonIdaOptions).
+  double velocity_tolerance_factor = 1.0;
+  double plastic_tolerance_factor = 1.0;
   double end_time_s = 0.05;       // latest end
   bool stop_at_arrest = true;     // end `settle_time_s` after the impactor first stops
   double settle_time_s = 1e-3;
@@ -25,6 +29,7 @@ struct PolygonRunOptions {
   int ida_max_order = 5;          // IDA BDF order limit (PolygonIdaOptions::max_order)
   PolygonLinearSolver ida_linear_solver = PolygonLinearSolver::Direct;  // PolygonIdaOptions
   PolygonJacobian ida_jacobian = PolygonJacobian::Analytic;             // PolygonIdaOptions
+  std::vector<PolygonIdaStep>* ida_step_log = nullptr;                  // PolygonIdaOptions
 };
 
 struct PolygonHistory {  // full structure (both halves), SI
