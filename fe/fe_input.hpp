@@ -57,8 +57,12 @@ struct ContactInput {
   // Both inner halves act as slave and as master (symmetric, no one-sided penetration).
   bool self_contact_two_pass = true;
   // Inner-wall points closer than this (reference arc angle) are joined by the wall itself
-  // and never paired.
-  double self_contact_min_separation_rad = std::numbers::pi / 3.0;
+  // and never paired. 0.2 rad (11.5°, about three wall thicknesses of inner arc at t/D 0.03):
+  // the legs of a side fold closed by lock-up touch much nearer the fold than the former π/3,
+  // which let them pass through each other unseen and stopped the high-energy HHT runs (README
+  // "FE dynamics", stability matrix; tests/fe/fold_contact_test.cpp). A wall bent into a crease
+  // of radius 0.02 mm still pairs no point with its own neighbourhood (same test).
+  double self_contact_min_separation_rad = 0.2;
   // Coulomb friction, penalty-regularised, at the rigid plates (fe/contact/plate_friction.hpp)
   // and on the inner wall against itself (slip along the smoothed surface, ring_contact.hpp);
   // scene key `friction_coefficient`. 0 = frictionless, the thesis: the friction code is then
