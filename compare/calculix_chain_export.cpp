@@ -189,8 +189,10 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   // Ring↔ring (free and welded joints) and inner wall (lock-up) as node-to-node gaps between
   // mirror nodes: the node at reference angle φ (φ = 0 at the bottom, ring_mesh.cpp) and the
   // node at π − φ face each other across the joint plane (of neighbours) or across the ring's
-  // horizontal diameter (inner wall), at the same x. Within π/3 of the joint / of the flats,
-  // as ringcrush pairs (ContactInput::self_contact_min_separation_rad). Valid while the two
+  // horizontal diameter (inner wall), at the same x. Within π/3 of the joint / of the flats
+  // (ringcrush pairs inner points down to 0.2 rad of arc, ContactInput::
+  // self_contact_min_separation_rad, which also closes side folds; mirror gaps cannot follow a
+  // fold, whose two legs slide along each other). Valid while the two
   // nodes slide little along each other, which the symmetry of the two sides keeps small;
   // ccx's *CONTACT PAIRs would slide freely but stall the integration as soon as they close
   // (node-to-surface at a free joint's initial touch: "too many cutbacks" at 0.5 us).
@@ -326,8 +328,7 @@ CalculixDeck calculix_chain_deck(const Scene& s, CalculixSection section) {
   // Outer surface of each ring: CPS8 face 1 of its outer layer of elements (ring_mesh.cpp
   // order), brick face S3; inner wall: CPS8 face 3 of its inner layer, brick face S5, split
   // by the reference angle φ of the face's middle node into the part near the ring's top
-  // (φ within π/3 of π) and near its bottom (within π/3 of 0), as the static deck; ringcrush
-  // never pairs inner points closer than π/3 of arc.
+  // (φ within π/3 of π) and near its bottom (within π/3 of 0), as the static deck.
   const int through = in.mesh.elements_through;
   for (int i = 0; i < in.rings; ++i) {
     o << fmt::format("*SURFACE, NAME=RING{}_OUTER, TYPE=ELEMENT\n", i + 1);

@@ -186,8 +186,9 @@ CalculixDeck calculix_deck(const Scene& s, CalculixSection section, CalculixPlat
   // Inner surface for the lock-up (thesis §3.6.3): face 3 (nodes 3-7-4) of the inner layer,
   // split by the reference angle φ of the face's middle node into the part near the bottom
   // plate (φ within π/3 of 0) and near the top (within π/3 of π). Faces nearer the sides are
-  // left out: ringcrush never pairs inner points closer than π/3 of arc
-  // (ContactInput::self_contact_min_separation_rad), and at lock-up the walls meet at the flats.
+  // left out: at lock-up of a single ring the walls meet at the flats (ringcrush itself pairs
+  // inner points down to ContactInput::self_contact_min_separation_rad = 0.2 rad of arc, for
+  // the side folds of chains; the static crush to 46 mm never closes them).
   const double pi = std::numbers::pi;
   std::vector<int> inner_bottom, inner_top;
   for (int e = in.mesh.elements_through - 1; e < out.ring_elements; e += in.mesh.elements_through) {
