@@ -27,6 +27,25 @@ fe::FeInput thesis_input() {
 
 using fe::load_at;
 
+// The thesis ring crushed to 0.72 d on 44×2 (two elements through the wall: the fully plastic
+// moment is integrated exactly), as (deflection, load) for the Redwood fits of (g).
+struct LoadCurve {
+  std::vector<double> deflection_m, force_n;
+};
+LoadCurve crush_44x2(const compare::Scene& scene, double d) {
+  fe::FeInput in = compare::fe_static_input(scene);
+  in.solver.frames = 0;
+  in.mesh.elements_around = 44;
+  in.mesh.elements_through = 2;
+  in.solver.crush_m = 0.72 * d;
+  LoadCurve c;
+  for (const auto& h : fe::run_static(in).history) {
+    c.deflection_m.push_back(h.deflection_m);
+    c.force_n.push_back(h.force_n);
+  }
+  return c;
+}
+
 struct Reference {
   double d, p0, m0;
 };
@@ -115,17 +134,7 @@ TEST(RingCrush, ThesisCrushOnThesisMesh) {
 // the issue's [0.5, 4] (README reports both fits); the search range here is [0.5, 16].
 TEST(RingCrush, ThesisCrushAgainstDeRuntzHodgeAndRedwood) {
   const auto scene = thesis_scene();
-  const auto ref = reference(scene);
-  fe::FeInput in = thesis_input();
-  in.mesh.elements_around = 44;
-  in.mesh.elements_through = 2;
-  in.solver.crush_m = 0.72 * ref.d;
-  const auto r = fe::run_static(in);
-  std::vector<double> x, p;
-  for (const auto& h : r.history) {
-    x.push_back(h.deflection_m);
-    p.push_back(h.force_n);
-  }
+  const auto [x, p] = crush_44x2(scene, reference(scene).d);
   const auto fit = compare::fit_redwood(scene, x, p, 0.1, 0.7, 0.5, 16.0);
   EXPECT_GT(fit.min_ratio_to_deruntz_hodge, 1.0);
   EXPECT_LT(fit.max_relative_deviation, 0.15) << "best alpha " << fit.alpha;
@@ -152,18 +161,7 @@ TEST(RingCrush, LinearHardeningRingFollowsRedwoodWithAlphaInIssueRange) {
   ASSERT_GT(e_t, 0.0);
   table = {table.front(), {table.front().yield_stress_pa + e_t * 1.0, 1.0}};
   ASSERT_NEAR(scene.rings.material.hardening_modulus(), e_t, 1e-6 * e_t);
-  const auto ref = reference(scene);
-  fe::FeInput in = compare::fe_static_input(scene);
-  in.solver.frames = 0;
-  in.mesh.elements_around = 44;
-  in.mesh.elements_through = 2;
-  in.solver.crush_m = 0.72 * ref.d;
-  const auto r = fe::run_static(in);
-  std::vector<double> x, p;
-  for (const auto& h : r.history) {
-    x.push_back(h.deflection_m);
-    p.push_back(h.force_n);
-  }
+  const auto [x, p] = crush_44x2(scene, reference(scene).d);
   const auto fit = compare::fit_redwood(scene, x, p, 0.1, 0.7, 0.5, 4.0);
   std::printf("linear hardening: Redwood best alpha in [0.5, 4] %.3f (max dev %.3f, rms %.3f); min P/P_DH %.3f\n",
               fit.alpha, fit.max_relative_deviation, fit.rms_relative_deviation, fit.min_ratio_to_deruntz_hodge);

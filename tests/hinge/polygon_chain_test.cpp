@@ -16,14 +16,7 @@ namespace {
 
 PolygonChainInput two_rings(PolygonJoint joint) { return two_ring_chain::input(joint); }
 
-double crush(const PolygonShape& s, int ring, const PolygonChainInput& in) {
-  double lo = 1e300, hi = -1e300;
-  for (const auto& p : s.nodes[ring]) {
-    lo = std::min(lo, p[1]);
-    hi = std::max(hi, p[1]);
-  }
-  return in.outer_diameter_m - (hi - lo + in.wall_thickness_m);
-}
+using two_ring_chain::crush;
 
 PolygonRunOutput run(const PolygonChainInput& in, PolygonIntegrator integ, double rtol, double end) {
   PolygonRunOptions o;

@@ -36,14 +36,7 @@ LoggedRun run(const PolygonChainInput& in, double velocity_factor, double plasti
   return r;
 }
 
-double crush(const PolygonShape& s, int ring, const PolygonChainInput& in) {
-  double lo = 1e300, hi = -1e300;
-  for (const auto& p : s.nodes[ring]) {
-    lo = std::min(lo, p[1]);
-    hi = std::max(hi, p[1]);
-  }
-  return in.outer_diameter_m - (hi - lo + in.wall_thickness_m);
-}
+using two_ring_chain::crush;
 
 }  // namespace
 

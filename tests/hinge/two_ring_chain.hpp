@@ -3,6 +3,8 @@
 // polygon tests run; plates, when the joint has them, of 10 g and 2 mm.
 #pragma once
 
+#include <algorithm>
+
 #include "hinge/polygon_chain.hpp"
 
 namespace ringcrush::hinge::two_ring_chain {
@@ -24,6 +26,17 @@ inline PolygonChainInput input(PolygonJoint joint) {
   in.membrane_damping_ratio = 1.0;
   in.hinge_damping_ratio = 1.0;
   return in;
+}
+
+// Crush of ring `ring` of a polygon shape: outer diameter minus its extent along the chain
+// axis (y) plus one wall (the shape holds the mean line).
+inline double crush(const PolygonShape& s, int ring, const PolygonChainInput& in) {
+  double lo = 1e300, hi = -1e300;
+  for (const auto& p : s.nodes[ring]) {
+    lo = std::min(lo, p[1]);
+    hi = std::max(hi, p[1]);
+  }
+  return in.outer_diameter_m - (hi - lo + in.wall_thickness_m);
 }
 
 }  // namespace ringcrush::hinge::two_ring_chain
