@@ -15,17 +15,17 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-double wrap_angle(double a) {
-  while (a > pi) a -= 2.0 * pi;
-  while (a <= -pi) a += 2.0 * pi;
-  return a;
-}
-
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("PolygonChainInput: " + what);
 }
 
 }  // namespace
+
+double PolygonChain::wrap_angle(double a) {
+  while (a > pi) a -= 2.0 * pi;
+  while (a <= -pi) a += 2.0 * pi;
+  return a;
+}
 
 PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   require(in_.rings >= 1, "rings must be at least 1");
@@ -231,509 +231,30 @@ void PolygonChain::diss_partials(double penetration, double rate, double& d_pen,
 
 void PolygonChain::evaluate(double t, const double* y, double* phi, bool record) {
   std::fill(phi, phi + size_, 0.0);
-  const double turn0 = 2.0 * pi / n_full_;
-  double plastic_power = 0.0, dissipation = 0.0, damping = 0.0, elastic = 0.0, contact_energy = 0.0;
+  Tally tally;
   const bool plates = in_.joint == PolygonJoint::Plates;
   if (record) {
     pairs_.clear();
     body_contacts_.clear();
   }
-
-  // --- Ring internal forces: bending hinges and membrane bars (THEORY §4.3) -------------
-  for (int r = 0; r < n_rings_; ++r) {
-    expand_ring(r, y);
-    for (int k = 0; k < n_full_; ++k) {
-      const int k1 = (k + 1) % n_full_;
-      const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
-      const double l = std::sqrt(bx * bx + by * by);
-      bar_l_[k] = l;
-      bar_ex_[k] = bx / l;
-      bar_ey_[k] = by / l;
-      bar_nx_[k] = -bar_ey_[k];
-      bar_ny_[k] = bar_ex_[k];
-      bar_beta_[k] = std::atan2(by, bx);
-      fx_[k] = fy_[k] = 0.0;
-    }
-    for (int k = 0; k < n_full_; ++k) {
-      const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
-      // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
-      // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
-      const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
-      const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
-      const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
-      moment_[k] = k_theta_ * (theta - theta_p_[k]);
-      double M = moment_[k];
-      double hinge_rate = 0.0;
-      if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
-        const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
-                            (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
-        M += c_hinge_ * rate;
-        if (k < n_ind_) damping += node_weight(k) * c_hinge_ * rate * rate;
-        hinge_rate = rate;
-      }
-      fx_[km] += M * ax;
-      fy_[km] += M * ay;
-      fx_[k] -= M * (ax + bx);
-      fy_[k] -= M * (ay + by);
-      fx_[kp] += M * bx;
-      fy_[kp] += M * by;
-      if (jac_) {
-        // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
-        // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
-        // The curvature terms −M ∂g/∂p (≈ M/ℓ², 1 % of k_θ/ℓ² at full plastic moment)
-        // are left out: the matrix only drives Newton, the residual stays exact.
-        const std::array<int, 3> nodes{km, k, kp};
-        const std::array<double, 3> gx{-ax, ax + bx, -bx}, gy{-ay, ay + by, -by};
-        hinge_gx_[k] = gx;
-        hinge_gy_[k] = gy;
-        for (int i = 0; i < 3; ++i)
-          for (int m = 0; m < 3; ++m) {
-            const double xx = gx[i] * gx[m], xy = gx[i] * gy[m], yx = gy[i] * gx[m],
-                         yy = gy[i] * gy[m];
-            ring_block(r, nodes[i], nodes[m], 0, -k_theta_ * xx, -k_theta_ * xy, -k_theta_ * yx,
-                       -k_theta_ * yy);
-            if (c_hinge_ > 0)
-              ring_block(r, nodes[i], nodes[m], 2, -c_hinge_ * xx, -c_hinge_ * xy, -c_hinge_ * yx,
-                         -c_hinge_ * yy);
-          }
-        if (k < n_ind_)  // θp of hinge k is an unknown only for the independent nodes
-          for (int i = 0; i < 3; ++i)
-            ring_force_entry(r, nodes[i], node_offset(r, k) + 4, k_theta_ * gx[i], k_theta_ * gy[i]);
-        else  // mirrored hinge: its θp is that of node N − k
-          for (int i = 0; i < 3; ++i)
-            ring_force_entry(r, nodes[i], node_offset(r, n_full_ - k) + 4, k_theta_ * gx[i],
-                             k_theta_ * gy[i]);
-        if (c_hinge_ > 0) {
-          // θ̇ = a·(v_k − v_{k−1}) + b·(v_k − v_{k+1}) with a = ∇β(u_{k−1}), b = ∇β(u_k) of the
-          // bar vectors u: ∂θ̇/∂u = H_β(u) Δv, H_β = [[2uxuy, uy²−ux²], [uy²−ux², −2uxuy]]/|u|⁴.
-          auto hess = [](double ux, double uy, double dvx, double dvy, double& hx, double& hy) {
-            const double l2 = ux * ux + uy * uy, l4 = l2 * l2;
-            const double hxx = 2 * ux * uy / l4, hxy = (uy * uy - ux * ux) / l4;
-            hx = hxx * dvx + hxy * dvy;
-            hy = hxy * dvx - hxx * dvy;
-          };
-          double hax = 0, hay = 0, hbx = 0, hby = 0;
-          hess(px_[k] - px_[km], py_[k] - py_[km], vx_[k] - vx_[km], vy_[k] - vy_[km], hax, hay);
-          hess(px_[kp] - px_[k], py_[kp] - py_[k], vx_[k] - vx_[kp], vy_[k] - vy_[kp], hbx, hby);
-          const std::array<double, 3> rx{-hax, hax - hbx, hbx}, ry{-hay, hay - hby, hby};  // ∂θ̇/∂p
-          for (int i = 0; i < 3; ++i)
-            for (int m = 0; m < 3; ++m)
-              ring_block(r, nodes[i], nodes[m], 0, -c_hinge_ * gx[i] * rx[m], -c_hinge_ * gx[i] * ry[m],
-                         -c_hinge_ * gy[i] * rx[m], -c_hinge_ * gy[i] * ry[m]);
-          if (k < n_ind_) {  // damper power w c_θ θ̇²
-            const double d = 2.0 * node_weight(k) * c_hinge_ * hinge_rate;
-            for (int i = 0; i < 3; ++i) {
-              ring_state_entry(r, acc_base_ + 2, nodes[i], 2, -d * gx[i], -d * gy[i]);
-              ring_state_entry(r, acc_base_ + 2, nodes[i], 0, -d * rx[i], -d * ry[i]);
-            }
-          }
-        }
-      }
-      // Membrane bar k: N = k_m (ℓ − ℓ0) along e.
-      double N = k_m_ * (bar_l_[k] - l0_);
-      double bar_rate = 0.0;
-      if (c_bar_ > 0) {  // Kelvin–Voigt bar damper on ℓ̇ = e · (v_{k+1} − v_k)
-        const double rate = bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
-        N += c_bar_ * rate;
-        if (!half_ || k < n_full_ / 2) damping += c_bar_ * rate * rate;
-        bar_rate = rate;
-      }
-      fx_[k] += N * bar_ex_[k];
-      fy_[k] += N * bar_ey_[k];
-      fx_[kp] -= N * bar_ex_[k];
-      fy_[kp] -= N * bar_ey_[k];
-      if (jac_) {
-        // F_k = N e = −F_{k+1}: ∂F_k/∂p_{k+1} = k_m e eᵀ + (N/ℓ)(I − e eᵀ),
-        // ∂F_k/∂v_{k+1} = c_b e eᵀ (the rotation of e in the damper term left out).
-        const double ex = bar_ex_[k], ey = bar_ey_[k], g = N / bar_l_[k];
-        const double sxx = k_m_ * ex * ex + g * (1 - ex * ex), sxy = (k_m_ - g) * ex * ey,
-                     syy = k_m_ * ey * ey + g * (1 - ey * ey);
-        const std::array<int, 2> ends{k, kp};
-        for (int i = 0; i < 2; ++i)
-          for (int m = 0; m < 2; ++m) {
-            const double sign = (i == m) ? -1.0 : 1.0;  // ∂F_k/∂p_k = −S, ∂F_k/∂p_{k+1} = S
-            ring_block(r, ends[i], ends[m], 0, sign * sxx, sign * sxy, sign * sxy, sign * syy);
-            if (c_bar_ > 0)
-              ring_block(r, ends[i], ends[m], 2, sign * c_bar_ * ex * ex, sign * c_bar_ * ex * ey,
-                         sign * c_bar_ * ex * ey, sign * c_bar_ * ey * ey);
-          }
-        if (c_bar_ > 0) {
-          // ℓ̇ = e·Δv turns with e: ∂ℓ̇/∂p_{k+1} = −∂ℓ̇/∂p_k = (I − e eᵀ) Δv / ℓ.
-          const double dvx = vx_[kp] - vx_[k], dvy = vy_[kp] - vy_[k];
-          const double ed = ex * dvx + ey * dvy;
-          const double hx = (dvx - ex * ed) / bar_l_[k], hy = (dvy - ey * ed) / bar_l_[k];
-          // F_k = c_b ℓ̇ e + …: ∂F_k/∂p_{k+1} += c_b e hᵀ; F_{k+1} = −F_k.
-          for (int i = 0; i < 2; ++i)
-            for (int m = 0; m < 2; ++m) {
-              const double sign = (i == m) ? -1.0 : 1.0;
-              ring_block(r, ends[i], ends[m], 0, sign * c_bar_ * ex * hx, sign * c_bar_ * ex * hy,
-                         sign * c_bar_ * ey * hx, sign * c_bar_ * ey * hy);
-            }
-          if (!half_ || k < n_full_ / 2) {  // damper power c_b ℓ̇²
-            const double d = 2.0 * c_bar_ * bar_rate;
-            ring_state_entry(r, acc_base_ + 2, kp, 2, -d * ex, -d * ey);
-            ring_state_entry(r, acc_base_ + 2, k, 2, d * ex, d * ey);
-            ring_state_entry(r, acc_base_ + 2, kp, 0, -d * hx, -d * hy);
-            ring_state_entry(r, acc_base_ + 2, k, 0, d * hx, d * hy);
-          }
-        }
-      }
-    }
-    if (record) {
-      const int bars = half_ ? n_full_ / 2 : n_full_;
-      for (int k = 0; k < bars; ++k) elastic += 0.5 * k_m_ * (bar_l_[k] - l0_) * (bar_l_[k] - l0_);
-    }
-    for (int j = 0; j < n_ind_; ++j) {
-      const auto o = node_offset(r, j);
-      const double w = node_weight(j);
-      const bool on_axis = half_ && (j == 0 || j == n_ind_ - 1);
-      phi[o] = on_axis ? 0.0 : y[o + 2];
-      phi[o + 1] = y[o + 3];
-      phi[o + 2] = on_axis ? 0.0 : w * fx_[j];
-      phi[o + 3] = w * fy_[j];
-      if (in_.mass_damping_per_s > 0) {
-        const double c = in_.mass_damping_per_s * w * m_node_;
-        if (!on_axis) phi[o + 2] -= c * y[o + 2];
-        phi[o + 3] -= c * y[o + 3];
-        if (jac_) {
-          if (!on_axis) jac(o + 2, o + 2, c);
-          jac(o + 3, o + 3, c);
-          if (!on_axis) jac(acc_base_ + 2, o + 2, -2.0 * c * y[o + 2]);
-          jac(acc_base_ + 2, o + 3, -2.0 * c * y[o + 3]);
-        }
-        damping += c * ((on_axis ? 0.0 : y[o + 2] * y[o + 2]) + y[o + 3] * y[o + 3]);
-      }
-      // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
-      // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
-      const double M = moment_[j];
-      const double My = std::min(M0_ + H_ * y[o + 5], cap_);
-      const double over = std::abs(M) / My - 1.0;
-      const double rate = over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0;
-      if (over > 0.0) {
-        phi[o + 4] = M > 0 ? rate : -rate;
-        phi[o + 5] = rate;
-        plastic_power += w * std::abs(M) * rate;
-      }
-      if (jac_) {
-        // ∂λ̇/∂M = C q over^(q−1) sign M / M_y with ∂M/∂p = k_θ g, ∂M/∂θp = −k_θ;
-        // ∂λ̇/∂ā = −C q over^(q−1) |M| H / M_y² while the cap is not reached. Elastic hinges
-        // keep these entries as zeros: the pattern then does not change with every yield.
-        const double dm = over > 0.0 ? C_vp_ * q_ * std::pow(over, q_ - 1.0) / My : 0.0;
-        const double sg = M > 0 ? 1.0 : -1.0;
-        const int km = (j + n_full_ - 1) % n_full_, kp = (j + 1) % n_full_;
-        const std::array<int, 3> nodes{km, j, kp};
-        const double dp = w * sg * (rate + std::abs(M) * dm);  // ∂(w |M| λ̇)/∂M
-        for (int i = 0; i < 3; ++i) {
-          const double gx = k_theta_ * hinge_gx_[j][i], gy = k_theta_ * hinge_gy_[j][i];
-          ring_state_entry(r, o + 4, nodes[i], 0, -dm * gx, -dm * gy);
-          ring_state_entry(r, o + 5, nodes[i], 0, -dm * sg * gx, -dm * sg * gy);
-          ring_state_entry(r, acc_base_, nodes[i], 0, -dp * gx, -dp * gy);
-        }
-        jac(o + 4, o + 4, dm * k_theta_);
-        jac(o + 5, o + 4, dm * sg * k_theta_);
-        jac(acc_base_, o + 4, dp * k_theta_);
-        const double da = M0_ + H_ * y[o + 5] < cap_ ? -dm * std::abs(M) * H_ / My : 0.0;
-        jac(o + 4, o + 5, -sg * da);
-        jac(o + 5, o + 5, -da);
-        jac(acc_base_, o + 5, -w * std::abs(M) * da);
-      }
-      if (record) elastic += w * 0.5 * M * M / k_theta_;
-    }
-  }
-
-  // --- Ties: welded point B(r) — A(r+1), c = p_B − p_A − (0, t), energy ½ w k |c|² ------
-  if (in_.joint == PolygonJoint::Welded) {
-    if (record) tie_pairs_.clear();
-    const int jb = half_ ? n_ind_ - 1 : n_full_ / 2;
-    const double w = half_ ? 0.5 : 1.0;
-    for (int r = 0; r + 1 < n_rings_; ++r) {
-      const auto ob = node_offset(r, jb), oa = node_offset(r + 1, 0);
-      const double cx = y[ob] - y[oa], cy = y[ob + 1] - y[oa + 1] - t_;
-      const double fx = w * k_tie_ * cx, fy = w * k_tie_ * cy;
-      if (!half_) {
-        phi[ob + 2] -= fx;
-        phi[oa + 2] += fx;
-      }
-      phi[ob + 3] -= fy;
-      phi[oa + 3] += fy;
-      if (jac_) {  // −∂φ/∂y of the tie spring, both components (x only in the full model)
-        const double kk = w * k_tie_;
-        for (int c = half_ ? 1 : 0; c < 2; ++c) {
-          const auto rb = ob + 2 + static_cast<std::size_t>(c), ra = oa + 2 + static_cast<std::size_t>(c);
-          const auto cb = ob + static_cast<std::size_t>(c), ca = oa + static_cast<std::size_t>(c);
-          jac(rb, cb, kk);
-          jac(rb, ca, -kk);
-          jac(ra, cb, -kk);
-          jac(ra, ca, kk);
-        }
-      }
-      if (record) {
-        elastic += 0.5 * w * k_tie_ * (cx * cx + cy * cy);
-        tie_pairs_.push_back({r * n_ind_ + jb, (r + 1) * n_ind_});
-      }
-    }
-  }
-
-  // --- Node–plate contact (gap = distance of the node to the face − t/2) ----------------
-  double impactor_force = 0.0, target_force = 0.0;
-  auto plate_contact = [&](int r, int body, bool above) {
-    const double h = body < 0 ? 0.0 : bodies_[body].half_thickness;
-    const double face = body_y(body, y) + (above ? -h : h);
-    const double vface = body_v(body, t, y);
-    for (int j = 0; j < n_ind_; ++j) {
-      const auto o = node_offset(r, j);
-      const double pen = above ? y[o + 1] + 0.5 * t_ - face : face - (y[o + 1] - 0.5 * t_);
-      if (pen <= -t_) continue;
-      if (record) body_contacts_.push_back({r * n_ind_ + j, body});
-      // Near pairs (within t) keep their Jacobian entries, as zeros while apart, so that the
-      // sparse pattern, and the direct solver's symbolic analysis, survive contact chatter.
-      if (pen <= 0.0 && !jac_) continue;
-      const bool touching = pen > 0.0;
-      const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
-      const double w = node_weight(j);
-      double diss = 0.0;
-      const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
-      if (touching) {
-        dissipation += w * diss;
-        contact_energy += w * 0.5 * k_n_ * pen * pen;
-      }
-      const double fy = above ? -f : f;  // on the node
-      phi[o + 3] += fy;
-      const bool body_free = body >= 0 && !(body == 0 && in_.driven_impactor);
-      if (body_free) phi[body_offset(body) + 1] -= fy;
-      if (jac_) {  // contact dissipation rate w (f − k p) ṗ, s = ±1 as below
-        const double sg = above ? 1.0 : -1.0;
-        double dp = 0.0, dr = 0.0;
-        if (touching) diss_partials(pen, rate, dp, dr);
-        jac(acc_base_ + 1, o + 1, -w * sg * dp);
-        jac(acc_base_ + 1, o + 3, -w * sg * dr);
-        if (body >= 0) jac(acc_base_ + 1, body_offset(body), w * sg * dp);
-        if (body_free) jac(acc_base_ + 1, body_offset(body) + 1, w * sg * dr);
-      }
-      if (jac_) {
-        // p = s (y_node − y_body) + const, ṗ = s (v_node − v_body), s = ±1 (above/below);
-        // node force −s f, body force s f.
-        const double fp = f > 0.0 ? w * k_n_ * (1.0 + chi_ * rate) : 0.0;
-        const double fr = f > 0.0 ? w * k_n_ * pen * chi_ : 0.0;
-        if (body == 0 && in_.driven_impactor) {  // external power f · V of the driven plate
-          const double v = prescribed_speed(t);
-          jac(acc_base_ + 3, o + 1, -v * fp);
-          jac(acc_base_ + 3, o + 3, -v * fr);
-          jac(acc_base_ + 3, body_offset(0), v * fp);
-        }
-        jac(o + 3, o + 1, fp);
-        jac(o + 3, o + 3, fr);
-        if (body >= 0) {
-          const auto ob = body_offset(body);
-          jac(o + 3, ob, -fp);
-          if (body_free) jac(o + 3, ob + 1, -fr);
-          if (body_free) {
-            jac(ob + 1, o + 1, -fp);
-            jac(ob + 1, o + 3, -fr);
-            jac(ob + 1, ob, fp);
-            jac(ob + 1, ob + 1, fr);
-          }
-        }
-      }
-      if (body == 0) impactor_force -= fy;
-      if (body < 0) target_force += f;
-    }
-  };
+  ring_forces(y, phi, record, tally);
+  if (in_.joint == PolygonJoint::Welded) tie_forces(y, phi, record, tally);
   for (int r = 0; r < n_rings_; ++r) {
     const int above = r == 0 ? 0 : (plates ? r : -2);
     const int below = r == n_rings_ - 1 ? (in_.fixed_target ? -1 : -2) : (plates ? r + 1 : -2);
-    if (above != -2) plate_contact(r, above, true);
-    if (below != -2) plate_contact(r, below, false);
+    if (above != -2) plate_contact(r, above, true, t, y, phi, record, tally);
+    if (below != -2) plate_contact(r, below, false, t, y, phi, record, tally);
   }
-
-  // --- Plate–plate contact (backstop once the rings between are flat) --------------------
-  for (const auto& bb : body_body_) {
-    const int upper = bb[0], lower = bb[1];
-    const double hu = bodies_[upper].half_thickness;
-    const double hl = lower < 0 ? 0.0 : bodies_[lower].half_thickness;
-    const int between = plates ? 1 : n_rings_;
-    const double pen = (body_y(lower, y) + hl) - (body_y(upper, y) - hu) + between * t_;
-    if (pen <= 0.0) continue;
-    const double rate = body_v(lower, t, y) - body_v(upper, t, y);
-    double diss = 0.0;
-    const double f = contact_force(pen, rate, diss);
-    dissipation += diss;
-    contact_energy += 0.5 * k_n_ * pen * pen;
-    const bool upper_free = !(upper == 0 && in_.driven_impactor);
-    if (upper_free) phi[body_offset(upper) + 1] += f;
-    if (upper == 0) impactor_force += f;
-    if (lower >= 0) phi[body_offset(lower) + 1] -= f;
-    else target_force += f;
-    if (jac_) {  // dissipation (f − k p) ṗ with p, ṗ rising with the lower body
-      double dp = 0.0, dr = 0.0;
-      diss_partials(pen, rate, dp, dr);
-      jac(acc_base_ + 1, body_offset(upper), dp);
-      if (upper_free) jac(acc_base_ + 1, body_offset(upper) + 1, dr);
-      if (lower >= 0) {
-        jac(acc_base_ + 1, body_offset(lower), -dp);
-        jac(acc_base_ + 1, body_offset(lower) + 1, -dr);
-      }
-    }
-    if (jac_ && f > 0.0) {
-      // ∂f/∂y_lower = −∂f/∂y_upper = k(1 + χ ṗ); ∂f/∂v_lower = −∂f/∂v_upper = k p χ.
-      const double fp = k_n_ * (1.0 + chi_ * rate), fr = k_n_ * pen * chi_;
-      const auto ou = body_offset(upper);
-      if (upper == 0 && in_.driven_impactor) {
-        const double v = prescribed_speed(t);
-        jac(acc_base_ + 3, ou, v * fp);
-        if (lower >= 0) jac(acc_base_ + 3, body_offset(lower), -v * fp);
-        if (lower >= 0) jac(acc_base_ + 3, body_offset(lower) + 1, -v * fr);
-      }
-      auto row = [&](std::size_t rrow, double sign) {
-        jac(rrow, ou, sign * fp);
-        if (upper_free) jac(rrow, ou + 1, sign * fr);
-        if (lower >= 0) {
-          jac(rrow, body_offset(lower), -sign * fp);
-          jac(rrow, body_offset(lower) + 1, -sign * fr);
-        }
-      };
-      if (upper_free) row(ou + 1, 1.0);    // −∂(+f)/∂y
-      if (lower >= 0) row(body_offset(lower) + 1, -1.0);
-    }
-  }
-
-  // --- Node–segment contact: ring–ring and inner wall (gap = distance − t) ---------------
-  // Each slave node meets the closest master segment of the other ring (or of its own ring,
-  // skipping the bars within two nodes); the reaction goes to the segment ends with weights
-  // (1 − s, s). Both rings of a pair act as slave in turn.
-  const int segs = half_ ? n_ind_ - 1 : n_ind_;
-  // Broad phase: per ring a bounding box, per block of `seg_block` consecutive segments a
-  // box, per segment a box grown by t. A node tests a block's segments only inside the
-  // block's box (the segments are still visited in order: the same closest segment).
-  const int blocks = (segs + seg_block - 1) / seg_block;
-  auto unite = [](std::array<double, 4>& into, const std::array<double, 4>& b) {
-    into = {std::min(into[0], b[0]), std::max(into[1], b[1]), std::min(into[2], b[2]),
-            std::max(into[3], b[3])};
-  };
+  body_body_contact(t, y, phi, tally);
+  update_contact_boxes(y);
   for (int r = 0; r < n_rings_; ++r) {
-    auto& box = ring_box_[r];
-    box = {1e300, -1e300, 1e300, -1e300};
-    for (int blk = 0; blk < blocks; ++blk) {
-      auto& bb = block_box_[static_cast<std::size_t>(r * blocks + blk)];
-      bb = {1e300, -1e300, 1e300, -1e300};
-      for (int a = blk * seg_block; a < std::min(segs, (blk + 1) * seg_block); ++a) {
-        const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
-        auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
-        sb = {std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
-              std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
-        unite(bb, sb);
-      }
-      unite(box, bb);
-    }
-  }
-  auto node_segment = [&](int rs, int rm, bool self) {
-    const auto& box = ring_box_[rm];
-    for (int j = 0; j < n_ind_; ++j) {
-      const auto os = node_offset(rs, j);
-      const double sx = y[os], sy = y[os + 1];
-      if (sx < box[0] || sx > box[1] || sy < box[2] || sy > box[3]) continue;
-      double best = t_ * 2.0;
-      int best_a = -1;
-      double best_s = 0.0;
-      for (int a = 0; a < segs; ++a) {
-        if (a % seg_block == 0) {
-          const auto& bb = block_box_[static_cast<std::size_t>(rm * blocks + a / seg_block)];
-          if (sx < bb[0] || sx > bb[1] || sy < bb[2] || sy > bb[3]) {
-            a += seg_block - 1;
-            continue;
-          }
-        }
-        const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
-        if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
-        const int b = (a + 1) % n_ind_;
-        if (self) {
-          const int da = std::abs(j - a), db = std::abs(j - b);
-          const int dista = half_ ? da : std::min(da, n_ind_ - da);
-          const int distb = half_ ? db : std::min(db, n_ind_ - db);
-          if (dista <= 2 || distb <= 2) continue;
-        }
-        const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
-        const double ax = y[oa], ay = y[oa + 1], bx = y[ob], by = y[ob + 1];
-        const double ex = bx - ax, ey = by - ay;
-        const double ll = ex * ex + ey * ey;
-        double s = ((sx - ax) * ex + (sy - ay) * ey) / ll;
-        s = std::clamp(s, 0.0, 1.0);
-        const double qx = ax + s * ex, qy = ay + s * ey;
-        const double d = std::sqrt((sx - qx) * (sx - qx) + (sy - qy) * (sy - qy));
-        if (d < best) {
-          best = d;
-          best_a = a;
-          best_s = s;
-        }
-      }
-      if (best_a < 0) continue;
-      const int a = best_a, b = (a + 1) % n_ind_;
-      if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
-      const double pen = t_ - best;
-      if (pen <= 0.0 && !jac_) continue;  // near pairs keep their (zero) Jacobian entries
-      const bool touching = pen > 0.0;
-      const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
-      const double s = best_s;
-      const double qx = (1 - s) * y[oa] + s * y[ob], qy = (1 - s) * y[oa + 1] + s * y[ob + 1];
-      const double nx = (sx - qx) / best, ny = (sy - qy) / best;
-      const double vqx = (1 - s) * y[oa + 2] + s * y[ob + 2];
-      const double vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
-      const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
-      const double w = node_weight(j);
-      double diss = 0.0;
-      const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
-      if (touching) {
-        dissipation += w * diss;
-        contact_energy += w * 0.5 * k_n_ * pen * pen;
-      }
-      phi[os + 2] += f * nx;
-      phi[os + 3] += f * ny;
-      phi[oa + 2] -= (1 - s) * f * nx;
-      phi[oa + 3] -= (1 - s) * f * ny;
-      phi[ob + 2] -= s * f * nx;
-      phi[ob + 3] -= s * f * ny;
-      if (jac_) {  // dissipation w (f − k p) ṗ; ∂p/∂p_m = ∂ṗ/∂v_m = −c_m n (c as below)
-        double dp = 0.0, dr = 0.0;
-        if (touching) diss_partials(pen, rate, dp, dr);
-        const std::array<std::size_t, 3> off{os, oa, ob};
-        const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
-        for (int i = 0; i < 3; ++i) {
-          jac(acc_base_ + 1, off[i], w * cw[i] * nx * dp);
-          jac(acc_base_ + 1, off[i] + 1, w * cw[i] * ny * dp);
-          jac(acc_base_ + 1, off[i] + 2, w * cw[i] * nx * dr);
-          jac(acc_base_ + 1, off[i] + 3, w * cw[i] * ny * dr);
-        }
-      }
-      if (jac_) {
-        // Forces (f n, −(1 − s) f n, −s f n) on (slave, a, b) with the gap d = |p − q| and
-        // ṗ = −n·(v − v_q): ∂F_i/∂p_m = −c_i c_m f_p n nᵀ, ∂F_i/∂v_m = −c_i c_m f_v n nᵀ,
-        // c = (1, −(1 − s), −s). s and n are held: their rates (the slide along the segment)
-        // move the force sideways, a small term next to the normal stiffness.
-        const double fp = f > 0.0 ? w * k_n_ * (1.0 + chi_ * rate) : 0.0;
-        const double fr = f > 0.0 ? w * k_n_ * pen * chi_ : 0.0;
-        const std::array<std::size_t, 3> off{os, oa, ob};
-        const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
-        const double nn[2][2] = {{nx * nx, nx * ny}, {ny * nx, ny * ny}};
-        for (int i = 0; i < 3; ++i)
-          for (int m = 0; m < 3; ++m) {
-            const double c = cw[i] * cw[m];
-            for (int a1 = 0; a1 < 2; ++a1)
-              for (int b1 = 0; b1 < 2; ++b1) {
-                jac(off[i] + 2 + static_cast<std::size_t>(a1), off[m] + static_cast<std::size_t>(b1), c * fp * nn[a1][b1]);
-                jac(off[i] + 2 + static_cast<std::size_t>(a1), off[m] + 2 + static_cast<std::size_t>(b1),
-                    c * fr * nn[a1][b1]);
-              }
-          }
-      }
-    }
-  };
-  for (int r = 0; r < n_rings_; ++r) {
-    node_segment(r, r, true);
+    node_segment_contact(r, r, true, y, phi, record, tally);
     if (!plates && r + 1 < n_rings_) {
-      node_segment(r, r + 1, false);
-      node_segment(r + 1, r, false);
+      node_segment_contact(r, r + 1, false, y, phi, record, tally);
+      node_segment_contact(r + 1, r, false, y, phi, record, tally);
     }
   }
+
   // The symmetry plane carries no x force on axis nodes.
   if (half_)
     for (int r = 0; r < n_rings_; ++r) {
@@ -751,15 +272,15 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
       phi[o] = y[o + 1];
     }
   }
-  phi[acc_base_] = plastic_power;
-  phi[acc_base_ + 1] = dissipation;
-  phi[acc_base_ + 2] = damping;
-  phi[acc_base_ + 3] = in_.driven_impactor ? impactor_force * prescribed_speed(t) : 0.0;
+  phi[acc_base_] = tally.plastic_power;
+  phi[acc_base_ + 1] = tally.dissipation;
+  phi[acc_base_ + 2] = tally.damping;
+  phi[acc_base_ + 3] = in_.driven_impactor ? tally.impactor_force * prescribed_speed(t) : 0.0;
 
-  last_impactor_force_ = impactor_force;
-  last_target_force_ = target_force;
-  if (record) last_contact_energy_ = contact_energy;
-  last_elastic_ = elastic;
+  last_impactor_force_ = tally.impactor_force;
+  last_target_force_ = tally.target_force;
+  if (record) last_contact_energy_ = tally.contact_energy;
+  last_elastic_ = tally.elastic;
 }
 
 void PolygonChain::rhs(double t, const double* y, double* dydt) {

@@ -189,8 +189,33 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
     int body;  // −1: target
   };
 
+  // φ(t, y) and, while analytic_jacobian runs, its derivatives; `record` refreshes the
+  // contact lists (the Jacobian's graph) and the reported energies. The force laws are
+  // summed in the pieces below, one file each.
   void evaluate(double t, const double* y, double* phi, bool record);
+  // The sums one evaluation carries across its pieces: the accumulator rows (plastic power,
+  // contact-damping power, Kelvin–Voigt and mass damping power), the recoverable energies
+  // and the forces on the impactor and the target.
+  struct Tally {
+    double plastic_power = 0, dissipation = 0, damping = 0, elastic = 0, contact_energy = 0;
+    double impactor_force = 0, target_force = 0;
+  };
+  // polygon_ring_forces.cpp: hinges, membrane bars, flow law, node rows.
+  void ring_forces(const double* y, double* phi, bool record, Tally& tally);
+  // polygon_body_contact.cpp: welded ties, node–plate and plate–plate contact.
+  void tie_forces(const double* y, double* phi, bool record, Tally& tally);
+  void plate_contact(int ring, int body, bool above, double t, const double* y, double* phi,
+                     bool record, Tally& tally);
+  void body_body_contact(double t, const double* y, double* phi, Tally& tally);
+  // polygon_segment_contact.cpp: ring–ring and inner-wall node–segment contact. The broad
+  // phase (boxes per ring, per block of `seg_block` segments and per segment, grown by t)
+  // is refreshed once per evaluation, before the pairs are searched.
+  int contact_segments() const;
+  void update_contact_boxes(const double* y);
+  void node_segment_contact(int slave_ring, int master_ring, bool self, const double* y,
+                            double* phi, bool record, Tally& tally);
   double prescribed_speed(double t) const;
+  static double wrap_angle(double a);  // to (−π, π]
   double body_y(int body, const double* y) const;
   double body_v(int body, double t, const double* y) const;
   double node_weight(int j) const { return (half_ && (j == 0 || j == n_ind_ - 1)) ? 0.5 : 1.0; }

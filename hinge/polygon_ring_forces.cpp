@@ -1,0 +1,219 @@
+// The ring's own forces in the polygon chain's residual (THEORY §4.3): bending hinges as
+// elastic–viscoplastic rotational springs with Kelvin–Voigt dampers, membrane bars, and the
+// Cowper–Symonds (Perzyna) flow rule of every hinge — with, while analytic_jacobian runs, the
+// derivatives of each law (PolygonChain::analytic_jacobian).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "hinge/polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
+  const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  for (int r = 0; r < n_rings_; ++r) {
+    expand_ring(r, y);
+    for (int k = 0; k < n_full_; ++k) {
+      const int k1 = (k + 1) % n_full_;
+      const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
+      const double l = std::sqrt(bx * bx + by * by);
+      bar_l_[k] = l;
+      bar_ex_[k] = bx / l;
+      bar_ey_[k] = by / l;
+      bar_nx_[k] = -bar_ey_[k];
+      bar_ny_[k] = bar_ex_[k];
+      bar_beta_[k] = std::atan2(by, bx);
+      fx_[k] = fy_[k] = 0.0;
+    }
+    for (int k = 0; k < n_full_; ++k) {
+      const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
+      // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
+      // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
+      const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
+      const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
+      const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
+      moment_[k] = k_theta_ * (theta - theta_p_[k]);
+      double M = moment_[k];
+      double hinge_rate = 0.0;
+      if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
+        const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
+                            (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+        M += c_hinge_ * rate;
+        if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
+        hinge_rate = rate;
+      }
+      fx_[km] += M * ax;
+      fy_[km] += M * ay;
+      fx_[k] -= M * (ax + bx);
+      fy_[k] -= M * (ay + by);
+      fx_[kp] += M * bx;
+      fy_[kp] += M * by;
+      if (jac_) {
+        // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
+        // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
+        // The curvature terms −M ∂g/∂p (≈ M/ℓ², 1 % of k_θ/ℓ² at full plastic moment)
+        // are left out: the matrix only drives Newton, the residual stays exact.
+        const std::array<int, 3> nodes{km, k, kp};
+        const std::array<double, 3> gx{-ax, ax + bx, -bx}, gy{-ay, ay + by, -by};
+        hinge_gx_[k] = gx;
+        hinge_gy_[k] = gy;
+        for (int i = 0; i < 3; ++i)
+          for (int m = 0; m < 3; ++m) {
+            const double xx = gx[i] * gx[m], xy = gx[i] * gy[m], yx = gy[i] * gx[m],
+                         yy = gy[i] * gy[m];
+            ring_block(r, nodes[i], nodes[m], 0, -k_theta_ * xx, -k_theta_ * xy, -k_theta_ * yx,
+                       -k_theta_ * yy);
+            if (c_hinge_ > 0)
+              ring_block(r, nodes[i], nodes[m], 2, -c_hinge_ * xx, -c_hinge_ * xy, -c_hinge_ * yx,
+                         -c_hinge_ * yy);
+          }
+        if (k < n_ind_)  // θp of hinge k is an unknown only for the independent nodes
+          for (int i = 0; i < 3; ++i)
+            ring_force_entry(r, nodes[i], node_offset(r, k) + 4, k_theta_ * gx[i], k_theta_ * gy[i]);
+        else  // mirrored hinge: its θp is that of node N − k
+          for (int i = 0; i < 3; ++i)
+            ring_force_entry(r, nodes[i], node_offset(r, n_full_ - k) + 4, k_theta_ * gx[i],
+                             k_theta_ * gy[i]);
+        if (c_hinge_ > 0) {
+          // θ̇ = a·(v_k − v_{k−1}) + b·(v_k − v_{k+1}) with a = ∇β(u_{k−1}), b = ∇β(u_k) of the
+          // bar vectors u: ∂θ̇/∂u = H_β(u) Δv, H_β = [[2uxuy, uy²−ux²], [uy²−ux², −2uxuy]]/|u|⁴.
+          auto hess = [](double ux, double uy, double dvx, double dvy, double& hx, double& hy) {
+            const double l2 = ux * ux + uy * uy, l4 = l2 * l2;
+            const double hxx = 2 * ux * uy / l4, hxy = (uy * uy - ux * ux) / l4;
+            hx = hxx * dvx + hxy * dvy;
+            hy = hxy * dvx - hxx * dvy;
+          };
+          double hax = 0, hay = 0, hbx = 0, hby = 0;
+          hess(px_[k] - px_[km], py_[k] - py_[km], vx_[k] - vx_[km], vy_[k] - vy_[km], hax, hay);
+          hess(px_[kp] - px_[k], py_[kp] - py_[k], vx_[k] - vx_[kp], vy_[k] - vy_[kp], hbx, hby);
+          const std::array<double, 3> rx{-hax, hax - hbx, hbx}, ry{-hay, hay - hby, hby};  // ∂θ̇/∂p
+          for (int i = 0; i < 3; ++i)
+            for (int m = 0; m < 3; ++m)
+              ring_block(r, nodes[i], nodes[m], 0, -c_hinge_ * gx[i] * rx[m], -c_hinge_ * gx[i] * ry[m],
+                         -c_hinge_ * gy[i] * rx[m], -c_hinge_ * gy[i] * ry[m]);
+          if (k < n_ind_) {  // damper power w c_θ θ̇²
+            const double d = 2.0 * node_weight(k) * c_hinge_ * hinge_rate;
+            for (int i = 0; i < 3; ++i) {
+              ring_state_entry(r, acc_base_ + 2, nodes[i], 2, -d * gx[i], -d * gy[i]);
+              ring_state_entry(r, acc_base_ + 2, nodes[i], 0, -d * rx[i], -d * ry[i]);
+            }
+          }
+        }
+      }
+      // Membrane bar k: N = k_m (ℓ − ℓ0) along e.
+      double N = k_m_ * (bar_l_[k] - l0_);
+      double bar_rate = 0.0;
+      if (c_bar_ > 0) {  // Kelvin–Voigt bar damper on ℓ̇ = e · (v_{k+1} − v_k)
+        const double rate = bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
+        N += c_bar_ * rate;
+        if (!half_ || k < n_full_ / 2) tally.damping += c_bar_ * rate * rate;
+        bar_rate = rate;
+      }
+      fx_[k] += N * bar_ex_[k];
+      fy_[k] += N * bar_ey_[k];
+      fx_[kp] -= N * bar_ex_[k];
+      fy_[kp] -= N * bar_ey_[k];
+      if (jac_) {
+        // F_k = N e = −F_{k+1}: ∂F_k/∂p_{k+1} = k_m e eᵀ + (N/ℓ)(I − e eᵀ),
+        // ∂F_k/∂v_{k+1} = c_b e eᵀ (the rotation of e in the damper term left out).
+        const double ex = bar_ex_[k], ey = bar_ey_[k], g = N / bar_l_[k];
+        const double sxx = k_m_ * ex * ex + g * (1 - ex * ex), sxy = (k_m_ - g) * ex * ey,
+                     syy = k_m_ * ey * ey + g * (1 - ey * ey);
+        const std::array<int, 2> ends{k, kp};
+        for (int i = 0; i < 2; ++i)
+          for (int m = 0; m < 2; ++m) {
+            const double sign = (i == m) ? -1.0 : 1.0;  // ∂F_k/∂p_k = −S, ∂F_k/∂p_{k+1} = S
+            ring_block(r, ends[i], ends[m], 0, sign * sxx, sign * sxy, sign * sxy, sign * syy);
+            if (c_bar_ > 0)
+              ring_block(r, ends[i], ends[m], 2, sign * c_bar_ * ex * ex, sign * c_bar_ * ex * ey,
+                         sign * c_bar_ * ex * ey, sign * c_bar_ * ey * ey);
+          }
+        if (c_bar_ > 0) {
+          // ℓ̇ = e·Δv turns with e: ∂ℓ̇/∂p_{k+1} = −∂ℓ̇/∂p_k = (I − e eᵀ) Δv / ℓ.
+          const double dvx = vx_[kp] - vx_[k], dvy = vy_[kp] - vy_[k];
+          const double ed = ex * dvx + ey * dvy;
+          const double hx = (dvx - ex * ed) / bar_l_[k], hy = (dvy - ey * ed) / bar_l_[k];
+          // F_k = c_b ℓ̇ e + …: ∂F_k/∂p_{k+1} += c_b e hᵀ; F_{k+1} = −F_k.
+          for (int i = 0; i < 2; ++i)
+            for (int m = 0; m < 2; ++m) {
+              const double sign = (i == m) ? -1.0 : 1.0;
+              ring_block(r, ends[i], ends[m], 0, sign * c_bar_ * ex * hx, sign * c_bar_ * ex * hy,
+                         sign * c_bar_ * ey * hx, sign * c_bar_ * ey * hy);
+            }
+          if (!half_ || k < n_full_ / 2) {  // damper power c_b ℓ̇²
+            const double d = 2.0 * c_bar_ * bar_rate;
+            ring_state_entry(r, acc_base_ + 2, kp, 2, -d * ex, -d * ey);
+            ring_state_entry(r, acc_base_ + 2, k, 2, d * ex, d * ey);
+            ring_state_entry(r, acc_base_ + 2, kp, 0, -d * hx, -d * hy);
+            ring_state_entry(r, acc_base_ + 2, k, 0, d * hx, d * hy);
+          }
+        }
+      }
+    }
+    if (record) {
+      const int bars = half_ ? n_full_ / 2 : n_full_;
+      for (int k = 0; k < bars; ++k) tally.elastic += 0.5 * k_m_ * (bar_l_[k] - l0_) * (bar_l_[k] - l0_);
+    }
+    for (int j = 0; j < n_ind_; ++j) {
+      const auto o = node_offset(r, j);
+      const double w = node_weight(j);
+      const bool on_axis = half_ && (j == 0 || j == n_ind_ - 1);
+      phi[o] = on_axis ? 0.0 : y[o + 2];
+      phi[o + 1] = y[o + 3];
+      phi[o + 2] = on_axis ? 0.0 : w * fx_[j];
+      phi[o + 3] = w * fy_[j];
+      if (in_.mass_damping_per_s > 0) {
+        const double c = in_.mass_damping_per_s * w * m_node_;
+        if (!on_axis) phi[o + 2] -= c * y[o + 2];
+        phi[o + 3] -= c * y[o + 3];
+        if (jac_) {
+          if (!on_axis) jac(o + 2, o + 2, c);
+          jac(o + 3, o + 3, c);
+          if (!on_axis) jac(acc_base_ + 2, o + 2, -2.0 * c * y[o + 2]);
+          jac(acc_base_ + 2, o + 3, -2.0 * c * y[o + 3]);
+        }
+        tally.damping += c * ((on_axis ? 0.0 : y[o + 2] * y[o + 2]) + y[o + 3] * y[o + 3]);
+      }
+      // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
+      // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
+      const double M = moment_[j];
+      const double My = std::min(M0_ + H_ * y[o + 5], cap_);
+      const double over = std::abs(M) / My - 1.0;
+      const double rate = over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0;
+      if (over > 0.0) {
+        phi[o + 4] = M > 0 ? rate : -rate;
+        phi[o + 5] = rate;
+        tally.plastic_power += w * std::abs(M) * rate;
+      }
+      if (jac_) {
+        // ∂λ̇/∂M = C q over^(q−1) sign M / M_y with ∂M/∂p = k_θ g, ∂M/∂θp = −k_θ;
+        // ∂λ̇/∂ā = −C q over^(q−1) |M| H / M_y² while the cap is not reached. Elastic hinges
+        // keep these entries as zeros: the pattern then does not change with every yield.
+        const double dm = over > 0.0 ? C_vp_ * q_ * std::pow(over, q_ - 1.0) / My : 0.0;
+        const double sg = M > 0 ? 1.0 : -1.0;
+        const int km = (j + n_full_ - 1) % n_full_, kp = (j + 1) % n_full_;
+        const std::array<int, 3> nodes{km, j, kp};
+        const double dp = w * sg * (rate + std::abs(M) * dm);  // ∂(w |M| λ̇)/∂M
+        for (int i = 0; i < 3; ++i) {
+          const double gx = k_theta_ * hinge_gx_[j][i], gy = k_theta_ * hinge_gy_[j][i];
+          ring_state_entry(r, o + 4, nodes[i], 0, -dm * gx, -dm * gy);
+          ring_state_entry(r, o + 5, nodes[i], 0, -dm * sg * gx, -dm * sg * gy);
+          ring_state_entry(r, acc_base_, nodes[i], 0, -dp * gx, -dp * gy);
+        }
+        jac(o + 4, o + 4, dm * k_theta_);
+        jac(o + 5, o + 4, dm * sg * k_theta_);
+        jac(acc_base_, o + 4, dp * k_theta_);
+        const double da = M0_ + H_ * y[o + 5] < cap_ ? -dm * std::abs(M) * H_ / My : 0.0;
+        jac(o + 4, o + 5, -sg * da);
+        jac(o + 5, o + 5, -da);
+        jac(acc_base_, o + 5, -w * std::abs(M) * da);
+      }
+      if (record) tally.elastic += w * 0.5 * M * M / k_theta_;
+    }
+  }
+}
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,151 @@
+// Node–segment contact in the polygon chain's residual: ring–ring and each ring's inner wall
+// (gap = distance − t, the wall thickness as offset; issue 7 item 1). Each slave node meets the
+// closest master segment of the other ring (or of its own ring, skipping the bars within two
+// nodes); the reaction goes to the segment ends with weights (1 − s, s). Both rings of a pair
+// act as slave in turn.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "hinge/polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+int PolygonChain::contact_segments() const { return half_ ? n_ind_ - 1 : n_ind_; }
+
+void PolygonChain::update_contact_boxes(const double* y) {
+  const int segs = contact_segments();
+  // Broad phase: per ring a bounding box, per block of `seg_block` consecutive segments a
+  // box, per segment a box grown by t. A node tests a block's segments only inside the
+  // block's box (the segments are still visited in order: the same closest segment).
+  const int blocks = (segs + seg_block - 1) / seg_block;
+  auto unite = [](std::array<double, 4>& into, const std::array<double, 4>& b) {
+    into = {std::min(into[0], b[0]), std::max(into[1], b[1]), std::min(into[2], b[2]),
+            std::max(into[3], b[3])};
+  };
+  for (int r = 0; r < n_rings_; ++r) {
+    auto& box = ring_box_[r];
+    box = {1e300, -1e300, 1e300, -1e300};
+    for (int blk = 0; blk < blocks; ++blk) {
+      auto& bb = block_box_[static_cast<std::size_t>(r * blocks + blk)];
+      bb = {1e300, -1e300, 1e300, -1e300};
+      for (int a = blk * seg_block; a < std::min(segs, (blk + 1) * seg_block); ++a) {
+        const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
+        auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
+        sb = {std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
+              std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
+        unite(bb, sb);
+      }
+      unite(box, bb);
+    }
+  }
+}
+
+void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double* y, double* phi,
+                                        bool record, Tally& tally) {
+  const int segs = contact_segments();
+  const int blocks = (segs + seg_block - 1) / seg_block;
+  const auto& box = ring_box_[rm];
+  for (int j = 0; j < n_ind_; ++j) {
+    const auto os = node_offset(rs, j);
+    const double sx = y[os], sy = y[os + 1];
+    if (sx < box[0] || sx > box[1] || sy < box[2] || sy > box[3]) continue;
+    double best = t_ * 2.0;
+    int best_a = -1;
+    double best_s = 0.0;
+    for (int a = 0; a < segs; ++a) {
+      if (a % seg_block == 0) {
+        const auto& bb = block_box_[static_cast<std::size_t>(rm * blocks + a / seg_block)];
+        if (sx < bb[0] || sx > bb[1] || sy < bb[2] || sy > bb[3]) {
+          a += seg_block - 1;
+          continue;
+        }
+      }
+      const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
+      if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
+      const int b = (a + 1) % n_ind_;
+      if (self) {
+        const int da = std::abs(j - a), db = std::abs(j - b);
+        const int dista = half_ ? da : std::min(da, n_ind_ - da);
+        const int distb = half_ ? db : std::min(db, n_ind_ - db);
+        if (dista <= 2 || distb <= 2) continue;
+      }
+      const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
+      const double ax = y[oa], ay = y[oa + 1], bx = y[ob], by = y[ob + 1];
+      const double ex = bx - ax, ey = by - ay;
+      const double ll = ex * ex + ey * ey;
+      double s = ((sx - ax) * ex + (sy - ay) * ey) / ll;
+      s = std::clamp(s, 0.0, 1.0);
+      const double qx = ax + s * ex, qy = ay + s * ey;
+      const double d = std::sqrt((sx - qx) * (sx - qx) + (sy - qy) * (sy - qy));
+      if (d < best) {
+        best = d;
+        best_a = a;
+        best_s = s;
+      }
+    }
+    if (best_a < 0) continue;
+    const int a = best_a, b = (a + 1) % n_ind_;
+    if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
+    const double pen = t_ - best;
+    if (pen <= 0.0 && !jac_) continue;  // near pairs keep their (zero) Jacobian entries
+    const bool touching = pen > 0.0;
+    const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
+    const double s = best_s;
+    const double qx = (1 - s) * y[oa] + s * y[ob], qy = (1 - s) * y[oa + 1] + s * y[ob + 1];
+    const double nx = (sx - qx) / best, ny = (sy - qy) / best;
+    const double vqx = (1 - s) * y[oa + 2] + s * y[ob + 2];
+    const double vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
+    const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
+    const double w = node_weight(j);
+    double diss = 0.0;
+    const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
+    if (touching) {
+      tally.dissipation += w * diss;
+      tally.contact_energy += w * 0.5 * k_n_ * pen * pen;
+    }
+    phi[os + 2] += f * nx;
+    phi[os + 3] += f * ny;
+    phi[oa + 2] -= (1 - s) * f * nx;
+    phi[oa + 3] -= (1 - s) * f * ny;
+    phi[ob + 2] -= s * f * nx;
+    phi[ob + 3] -= s * f * ny;
+    if (jac_) {  // dissipation w (f − k p) ṗ; ∂p/∂p_m = ∂ṗ/∂v_m = −c_m n (c as below)
+      double dp = 0.0, dr = 0.0;
+      if (touching) diss_partials(pen, rate, dp, dr);
+      const std::array<std::size_t, 3> off{os, oa, ob};
+      const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
+      for (int i = 0; i < 3; ++i) {
+        jac(acc_base_ + 1, off[i], w * cw[i] * nx * dp);
+        jac(acc_base_ + 1, off[i] + 1, w * cw[i] * ny * dp);
+        jac(acc_base_ + 1, off[i] + 2, w * cw[i] * nx * dr);
+        jac(acc_base_ + 1, off[i] + 3, w * cw[i] * ny * dr);
+      }
+    }
+    if (jac_) {
+      // Forces (f n, −(1 − s) f n, −s f n) on (slave, a, b) with the gap d = |p − q| and
+      // ṗ = −n·(v − v_q): ∂F_i/∂p_m = −c_i c_m f_p n nᵀ, ∂F_i/∂v_m = −c_i c_m f_v n nᵀ,
+      // c = (1, −(1 − s), −s). s and n are held: their rates (the slide along the segment)
+      // move the force sideways, a small term next to the normal stiffness.
+      const double fp = f > 0.0 ? w * k_n_ * (1.0 + chi_ * rate) : 0.0;
+      const double fr = f > 0.0 ? w * k_n_ * pen * chi_ : 0.0;
+      const std::array<std::size_t, 3> off{os, oa, ob};
+      const std::array<double, 3> cw{1.0, -(1.0 - s), -s};
+      const double nn[2][2] = {{nx * nx, nx * ny}, {ny * nx, ny * ny}};
+      for (int i = 0; i < 3; ++i)
+        for (int m = 0; m < 3; ++m) {
+          const double c = cw[i] * cw[m];
+          for (int a1 = 0; a1 < 2; ++a1)
+            for (int b1 = 0; b1 < 2; ++b1) {
+              jac(off[i] + 2 + static_cast<std::size_t>(a1), off[m] + static_cast<std::size_t>(b1), c * fp * nn[a1][b1]);
+              jac(off[i] + 2 + static_cast<std::size_t>(a1), off[m] + 2 + static_cast<std::size_t>(b1),
+                  c * fr * nn[a1][b1]);
+            }
+        }
+    }
+  }
+}
+
+}  // namespace ringcrush::hinge
