@@ -29,7 +29,7 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
   std::vector<Level3Shape> shapes;
   double top = 0.0;
   for (const auto& s : states) {  // stacked: each top a wall thickness below the ring above
-    shapes.push_back(level3_ring_shape(in.ring, w, s, top));
+    shapes.push_back(level3_ring_shape(in.ring, w, s, top, 48));  // 48 points a quadrant: ratio to ~1e-4
     top = shapes.back().bottom_y - t;
   }
   const double load = std::max(force_n, 0.0);

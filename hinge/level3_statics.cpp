@@ -49,6 +49,20 @@ Level3Contacts level3_contact_edges(const Level3Shape& s) {
   c.bottom = s.points.size() - 1;
   for (std::size_t k = s.points.size(); k-- > 0;)  // outermost point of the bottom flat
     if (s.theta[k] > half && s.points[k][1] <= bot + tol) c.bottom = k;
+  c.top_edge = s.points[c.top];
+  c.bottom_edge = s.points[c.bottom];
+  // x₀ of the parabola through (x1, y1), (x2, y2) tangent to the flat y = yf beyond x_last.
+  auto edge = [](double yf, double xl, const std::array<double, 2>& p1, const std::array<double, 2>& p2) {
+    const double d1 = std::abs(yf - p1[1]), d2 = std::abs(yf - p2[1]);
+    if (!(d2 > d1) || !(p1[0] > xl)) return xl;
+    const double r = std::sqrt(d1 / d2);
+    return std::clamp((p1[0] - r * p2[0]) / (1.0 - r), xl, p1[0]);
+  };
+  const std::size_t n = s.points.size();
+  if (c.top > 0 && c.top + 2 < n)  // a flat of two or more points: the arc follows it
+    c.top_edge[0] = edge(top, s.points[c.top][0], s.points[c.top + 1], s.points[c.top + 2]);
+  if (c.bottom + 1 < n && c.bottom >= 2)
+    c.bottom_edge[0] = edge(bot, s.points[c.bottom][0], s.points[c.bottom - 1], s.points[c.bottom - 2]);
   return c;
 }
 
@@ -64,8 +78,8 @@ Level3Statics level3_statics_check(const Level3Shape& s, double load_n, double M
   for (std::size_t k = 0; k < n; ++k) {
     const auto& p = s.points[k];
     h[k] = p[1] - pa[1];
-    if (k > c.top) g[k] -= (s.points[c.top][0] - p[0]) * 0.5 * load_n;
-    if (k > c.bottom) g[k] += (s.points[c.bottom][0] - p[0]) * 0.5 * load_n;
+    if (k > c.top) g[k] -= (c.top_edge[0] - p[0]) * 0.5 * load_n;
+    if (k >= c.bottom) g[k] += (c.bottom_edge[0] - p[0]) * 0.5 * load_n;  // edge lies before point c.bottom
   }
   auto range = [&](double H, double& lo, double& hi) {
     lo = 1e300;

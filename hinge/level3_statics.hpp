@@ -16,6 +16,7 @@
 //              form first; P/ratio is a lower bound on the true collapse load.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -23,9 +24,15 @@
 
 namespace ringcrush::hinge {
 
-// Indices of the top and bottom contact edges of a half-ring shape (see above).
+// The top and bottom contact edges of a half-ring shape (see above): the index of the last
+// shape point on each flat and the edge itself. A flat drawn as a polyline generally ends
+// between two shape points (the tangent point of the arc that follows); the edge is placed
+// there by fitting y = y_flat − a (x − x₀)² through the next two points (exact for a parabola,
+// O(h³) off for the drawn circular arcs) so the load's lever arm does not depend on where
+// the points fall.
 struct Level3Contacts {
   std::size_t top = 0, bottom = 0;
+  std::array<double, 2> top_edge{}, bottom_edge{};
 };
 Level3Contacts level3_contact_edges(const Level3Shape& shape);
 

@@ -50,17 +50,19 @@ TEST(Level3Statics, RingBetweenPlatesAtOnsetIsTheFourHingeField) {
 // Under the DeRuntz–Hodge load P0/cos φ of the flattened ring the arcs carry M linear in x
 // from +M0 at the flat's edge to −M0 at C: ratio 1 (the mechanism is exact); a load below it
 // scales the ratio (P R cos φ / 4 M0), a load above it exceeds M0 — the ring would need
-// another hinge, and no field can help.
+// another hinge, and no field can help. Tolerance 5e-5: the drawn flat ends between two shape
+// points and its edge is found by a parabola fit of the circular arc (1.1e-5 off at 48 points
+// a quadrant; taking the last flat point instead, the lever arm is 2e-3–9e-3 off).
 TEST(Level3Statics, DeRuntzHodgeLoadIsExactlyAtYieldOnTheFlattenedRing) {
   const double M0 = kRing.plastic_moment_nm, P0 = kRing.collapse_load();
   for (double phi : {0.2, 0.6, 1.0}) {
     const auto s = uniform_shape(phi);
     const auto at = level3_statics_check(s, P0 / std::cos(phi), M0);
-    EXPECT_NEAR(at.peak_ratio, 1.0, 1e-9) << "φ = " << phi;
+    EXPECT_NEAR(at.peak_ratio, 1.0, 5e-5) << "φ = " << phi;
     const auto below = level3_statics_check(s, P0, M0);
-    EXPECT_NEAR(below.peak_ratio, std::cos(phi), 1e-9) << "φ = " << phi;
+    EXPECT_NEAR(below.peak_ratio, std::cos(phi), 5e-5) << "φ = " << phi;
     const auto above = level3_statics_check(s, 1.2 * P0 / std::cos(phi), M0);
-    EXPECT_NEAR(above.peak_ratio, 1.2, 1e-9) << "φ = " << phi;
+    EXPECT_NEAR(above.peak_ratio, 1.2, 6e-5) << "φ = " << phi;
   }
 }
 
@@ -69,8 +71,11 @@ TEST(Level3Statics, ContactEdgesAreTheEndsOfTheFlats) {
   const double phi = 0.5;
   const auto s = uniform_shape(phi, 24);
   const auto c = level3_contact_edges(s);
-  EXPECT_NEAR(s.points[c.top][0], kRing.mean_radius() * (1.0 - std::cos(phi)), 1e-12);
-  EXPECT_NEAR(s.points[c.bottom][0], kRing.mean_radius() * (1.0 - std::cos(phi)), 1e-12);
+  const double edge = kRing.mean_radius() * (1.0 - std::cos(phi));  // tangent point of the arc
+  EXPECT_NEAR(c.top_edge[0], edge, 1e-3 * edge);
+  EXPECT_NEAR(c.bottom_edge[0], edge, 1e-3 * edge);
+  EXPECT_LT(s.points[c.top][0], edge);  // the last drawn flat point falls short of it
+  EXPECT_LT(s.points[c.bottom][0], edge);
   const auto round = uniform_shape(0.0, 24);
   const auto r = level3_contact_edges(round);
   EXPECT_EQ(r.top, 0u);
@@ -92,7 +97,8 @@ TEST(Level3Statics, BadInputIsRejected) {
 }
 
 // In the chain: a plated rigid-perfectly-plastic chain flows DeRuntz–Hodge in every ring at
-// the common force, so every ring's statics ratio over the run is 1 (at yield, never above).
+// the common force, so every ring's statics ratio over the run is 1 (at yield, never above);
+// 5e-4: the flat-edge fit on the chain's 48-point shapes over φ up to 1.3 rad.
 TEST(Level3Statics, PlatedChainRingsStayAtYield) {
   Level3Input in;
   in.rings = 3;
@@ -106,5 +112,5 @@ TEST(Level3Statics, PlatedChainRingsStayAtYield) {
   o.end_time = 0.05;
   const auto r = simulate_level3(in, o);
   ASSERT_EQ(r.rings.size(), 3u);
-  for (const auto& rr : r.rings) EXPECT_NEAR(rr.peak_moment_ratio, 1.0, 1e-6);
+  for (const auto& rr : r.rings) EXPECT_NEAR(rr.peak_moment_ratio, 1.0, 5e-4);
 }

@@ -153,8 +153,9 @@ TEST(Level3TravellingE, ChainWithShearFreeEIsUnchangedAndPlacesE) {
     EXPECT_LT(b.theta_e, 0.5 * pi);
     EXPECT_TRUE(std::isfinite(b.e_mechanism_load_n));
     EXPECT_GT(b.e_mechanism_load_n, 0.0);
-    if (b.held_cap <= in.theta_e)  // the fixed E is then a candidate: the least load is below
+    if (b.held_cap <= in.theta_e) {  // the fixed E is then a candidate: the least load is below
       EXPECT_LE(b.e_mechanism_load_n, a.e_mechanism_load_n * (1.0 + 1e-9));
+    }
     bool reported = false;
     for (const auto& h : b.hinges)
       if (h.name == "E") {
