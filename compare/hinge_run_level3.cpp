@@ -161,7 +161,12 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
       mech.back()["theta_E_deg"] = rr.theta_e * 180.0 / std::numbers::pi;
       mech.back()["E_mechanism_load_N"] = rr.e_mechanism_load_n;
       mech.back()["bottom_load_N"] = rr.bottom_load_n;
+      mech.back()["onset"] = {{"held_cap_deg", rr.held_cap_onset * 180.0 / std::numbers::pi},
+                              {"theta_E_deg", rr.theta_e_onset * 180.0 / std::numbers::pi},
+                              {"E_mechanism_load_N", rr.e_onset_load_n},
+                              {"bottom_load_N", rr.bottom_onset_load_n}};
       mech.back()["E_cheaper_states"] = rr.e_cheaper_states;
+      mech.back()["E_cheaper_from_s"] = rr.e_cheaper_time_s >= 0 ? nlohmann::json(rr.e_cheaper_time_s) : nlohmann::json();
     }
     moment_ratio.push_back(rr.peak_moment_ratio);
   }

@@ -30,7 +30,7 @@ std::array<double, 2> at_angle(const Level3Shape& s, double th) {
 }
 
 EHingeRate rate_on(const Level3Shape& s, const std::array<double, 2>& c, const std::array<double, 2>& b, double M0,
-                   double th) {
+                   double th, double hard) {
   const auto e = at_angle(s, th);
   EHingeRate r;
   r.theta_e = th;
@@ -45,7 +45,7 @@ EHingeRate rate_on(const Level3Shape& s, const std::array<double, 2>& c, const s
   const double sgn = crush >= 0.0 ? 1.0 : -1.0;  // the crushing sense
   r.omega_ec = sgn * w1;
   r.omega_cb = sgn * w2;
-  const double diss = 2.0 * M0 * (std::abs(w1) + std::abs(w2 - w1) + std::abs(w2));
+  const double diss = 2.0 * M0 * (std::abs(w1) + hard * (std::abs(w2 - w1) + std::abs(w2)));
   r.load = std::abs(crush) > 0.0 ? diss / std::abs(crush) : std::numeric_limits<double>::infinity();
   if (r.load < std::numeric_limits<double>::infinity()) {
     r.omega_ec /= std::abs(crush);
@@ -66,24 +66,31 @@ double distance_to_polyline(const std::array<double, 2>& p, const Level3Shape& s
   return best;
 }
 
+void check_hardening(double h) {
+  if (!(h >= 1.0) || !std::isfinite(h))
+    throw std::invalid_argument(fmt::format("E hinge: hardening factor = {} (need finite, >= 1)", h));
+}
+
 }  // namespace
 
-EHingeRate level3_e_rate(const Level3Shape& s, double M0, double theta_e) {
+EHingeRate level3_e_rate(const Level3Shape& s, double M0, double theta_e, double hard) {
+  check_hardening(hard);
   const auto contacts = level3_contact_edges(s);  // validates the shape
   if (!(M0 > 0.0)) throw std::invalid_argument(fmt::format("E hinge: M0 = {} N·m (need > 0)", M0));
   if (!(theta_e >= 0.0 && theta_e <= kThetaEHi))
     throw std::invalid_argument(fmt::format("E hinge: theta_E = {} rad outside [0°, 89°]", theta_e));
-  return rate_on(s, at_angle(s, 0.5 * pi), s.points[contacts.bottom], M0, theta_e);
+  return rate_on(s, at_angle(s, 0.5 * pi), s.points[contacts.bottom], M0, theta_e, hard);
 }
 
-EHingeRate level3_shear_free_e(const Level3Shape& s, double M0, double theta_cap) {
+EHingeRate level3_shear_free_e(const Level3Shape& s, double M0, double theta_cap, double hard) {
+  check_hardening(hard);
   if (!(theta_cap >= 0.0 && theta_cap <= kThetaEHi))
     throw std::invalid_argument(fmt::format("E hinge: held cap edge = {} rad outside [0°, 89°]", theta_cap));
   const auto contacts = level3_contact_edges(s);
   if (!(M0 > 0.0)) throw std::invalid_argument(fmt::format("E hinge: M0 = {} N·m (need > 0)", M0));
   const auto c = at_angle(s, 0.5 * pi);
   const auto b = s.points[contacts.bottom];
-  auto f = [&](double th) { return rate_on(s, c, b, M0, th); };
+  auto f = [&](double th) { return rate_on(s, c, b, M0, th, hard); };
   // A scan (the load is piecewise smooth on the polyline) brackets the least load; golden
   // section refines it between the neighbouring scan points.
   constexpr int scan = 48;

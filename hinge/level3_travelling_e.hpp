@@ -17,7 +17,8 @@
 //   B′ = the bottom contact edge (B itself on a round bottom), sliding on the axis line:
 //     ẋ_B′ = −ω₁ (y_C − y_E) − ω₂ (y_B′ − y_C) = 0,
 //   crush rate (B′ rising towards the cap)  δ̇ = ω₁ (x_C − x_E) + ω₂ (x_B′ − x_C),
-//   dissipation (both halves)  Ḋ = 2 M0 (|ω₁| + |ω₂ − ω₁| + |ω₂|),
+//   dissipation (both halves)  Ḋ = 2 M0 (|ω₁| + h |ω₂ − ω₁| + h |ω₂|), h the Redwood factor
+//   the hinges C and B have already hardened to in the ring's earlier crush (1: none; E is new),
 //   load by virtual work       P(θ_E) = Ḋ / |δ̇|.
 // Undeformed circle (closed form): P(θ_E) = (4 M0/R)(1 + cos θ_E)/(1 + cos θ_E − sin θ_E);
 // dP/dθ_E = (4 M0/R)(1 + cos θ_E)/(1 + cos θ_E − sin θ_E)² > 0, so the least load is at the
@@ -42,9 +43,10 @@ struct EHingeRate {
 
 // The E–C–B mechanism on `shape` with E at theta_e ∈ (0°−, 90°): throws std::invalid_argument
 // outside [0, 89°] or on a bad shape.
-EHingeRate level3_e_rate(const Level3Shape& shape, double plastic_moment_nm, double theta_e);
+EHingeRate level3_e_rate(const Level3Shape& shape, double plastic_moment_nm, double theta_e, double hardening = 1.0);
 // The least-load (shear-free) E over [theta_cap, 89°].
-EHingeRate level3_shear_free_e(const Level3Shape& shape, double plastic_moment_nm, double theta_cap);
+EHingeRate level3_shear_free_e(const Level3Shape& shape, double plastic_moment_nm, double theta_cap,
+                               double hardening = 1.0);
 // The held cap of `lower` under `upper` (both in chain coordinates, as stacked by the
 // chain): the largest material angle θ ≤ 89° up to which every point of `lower`'s upper
 // quadrant lies within `gap` of `upper`'s mean line (THEORY §4.6's contact band, 1.1 t).
