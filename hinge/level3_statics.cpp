@@ -27,6 +27,31 @@ void check_shape(const Level3Shape& s) {
       throw std::invalid_argument(fmt::format("statics: material angle not increasing at point {} ({} rad)", k, s.theta[k]));
 }
 
+// Indices of the vertices of the convex hull of the points (x_k, y_k) (Andrew's monotone
+// chain; collinear points dropped).
+std::vector<std::size_t> hull_vertices(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<std::size_t> idx(x.size());
+  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = k;
+  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b] || (x[a] == x[b] && y[a] < y[b]); });
+  auto cross = [&](std::size_t o, std::size_t a, std::size_t b) {
+    return (x[a] - x[o]) * (y[b] - y[o]) - (y[a] - y[o]) * (x[b] - x[o]);
+  };
+  std::vector<std::size_t> h(2 * idx.size());
+  std::size_t m = 0;
+  for (std::size_t k : idx) {  // lower chain
+    while (m >= 2 && cross(h[m - 2], h[m - 1], k) <= 0) --m;
+    h[m++] = k;
+  }
+  const std::size_t lower = m + 1;
+  for (std::size_t j = idx.size() - 1; j-- > 0;) {  // upper chain
+    const std::size_t k = idx[j];
+    while (m >= lower && cross(h[m - 2], h[m - 1], k) <= 0) --m;
+    h[m++] = k;
+  }
+  h.resize(m > 1 ? m - 1 : m);
+  return h;
+}
+
 }  // namespace
 
 Level3Contacts level3_contact_edges(const Level3Shape& s) {
@@ -81,10 +106,13 @@ Level3Statics level3_statics_check(const Level3Shape& s, double load_n, double M
     if (k > c.top) g[k] -= (c.top_edge[0] - p[0]) * 0.5 * load_n;
     if (k >= c.bottom) g[k] += (c.bottom_edge[0] - p[0]) * 0.5 * load_n;  // edge lies before point c.bottom
   }
+  // max_k (H h_k + g_k) is attained on the convex hull of the points (h_k, g_k), so the
+  // search only visits its vertices (a few dozen of a few hundred points).
+  const auto hull = hull_vertices(h, g);
   auto range = [&](double H, double& lo, double& hi) {
     lo = 1e300;
     hi = -1e300;
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k : hull) {
       const double m = H * h[k] + g[k];
       lo = std::min(lo, m);
       hi = std::max(hi, m);
@@ -99,7 +127,7 @@ Level3Statics level3_statics_check(const Level3Shape& s, double load_n, double M
   const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
   double x1 = b - gr * (b - a), x2 = a + gr * (b - a);
   double f1 = range(x1, lo, hi), f2 = range(x2, lo, hi);
-  for (int it = 0; it < 90; ++it) {
+  for (int it = 0; it < 48; ++it) {  // 0.618^48 of the bracket: H to 1e-10 (P + M0/extent)
     if (f1 < f2) { b = x2; x2 = x1; f2 = f1; x1 = b - gr * (b - a); f1 = range(x1, lo, hi); }
     else { a = x1; x1 = x2; f1 = f2; x2 = a + gr * (b - a); f2 = range(x2, lo, hi); }
   }
