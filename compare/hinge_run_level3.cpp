@@ -154,7 +154,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
                     {"plastic_work_J", rr.plastic_work_j},
                     // statics check (hinge/level3_statics.hpp): > 1 means another hinge needed
                     {"moment_ratio_max", rr.peak_moment_ratio},
-                    {"moment_ratio_max_angle_deg", rr.peak_moment_angle_deg},
+                    {"moment_ratio_max_angles_deg", rr.peak_moment_angles_deg},
                     {"moment_ratio_max_time_s", rr.peak_moment_time_s}});
     if (rr.reinforced) {  // hinge E of the ring under a wrap (hinge/level3_travelling_e.hpp)
       mech.back()["held_cap_deg"] = rr.held_cap * 180.0 / std::numbers::pi;

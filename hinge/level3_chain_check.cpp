@@ -50,6 +50,7 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
       rr.peak_moment_ratio = st.peak_ratio;
       rr.peak_moment_angle_deg = st.angle_deg;
       rr.peak_moment_time_s = time_s;
+      rr.peak_moment_angles_deg = st.peak_angles_deg;
     }
     if (!states[i].reinforced || i == 0) continue;
     rr.held_cap = level3_held_cap(shapes[i - 1], shapes[i], 1.1 * t);

@@ -150,10 +150,11 @@ struct Level3RingResult {
   // ratio max|M|/M_p under the chain force, where and when (ratio > 1: another hinge needed);
   // M_p = M0 times the flowing mechanism's Redwood factor (1 + kφ, 1 + kψ; 1 for the wrap).
   double peak_moment_ratio = 0.0, peak_moment_angle_deg = 0.0, peak_moment_time_s = 0.0;
+  std::vector<double> peak_moment_angles_deg;  // every place the field reaches that peak
   // Under a wrap, at the last state: the held cap edge, E (Fixed: theta_e; ShearFree: the
   // least-load E), the E–C–B load there and the bottom mechanism's load (both N).
   double held_cap = 0.0, theta_e = 0.0, e_mechanism_load_n = 0.0, bottom_load_n = 0.0;
-  int e_cheaper_states = 0;  // output states where E–C–B needed less load than the bottom mode
+  int e_cheaper_states = 0;  // checked states where E–C–B needed less load than the bottom mode
   double e_cheaper_time_s = -1.0;  // the first of them (−1: none); locked states are skipped
   // The same at the first output state under the wrap (the reinforcement event).
   double held_cap_onset = 0.0, theta_e_onset = 0.0, e_onset_load_n = 0.0, bottom_onset_load_n = 0.0;

@@ -143,6 +143,13 @@ Level3Statics level3_statics_check(const Level3Shape& s, double load_n, double M
   }
   out.peak_ratio = half_range / M0;
   out.angle_deg = s.theta[kmax] * 180.0 / std::numbers::pi;
+  const double top = std::abs(out.moment_nm[kmax]);
+  bool in_run = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool at = std::abs(out.moment_nm[k]) >= top * (1.0 - 1e-6);
+    if (at && !in_run) out.peak_angles_deg.push_back(s.theta[k] * 180.0 / std::numbers::pi);
+    in_run = at;
+  }
   return out;
 }
 

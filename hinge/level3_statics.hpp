@@ -38,7 +38,10 @@ Level3Contacts level3_contact_edges(const Level3Shape& shape);
 
 struct Level3Statics {
   double peak_ratio = 0.0;          // min over (H, M_A) of max |M|/M0 along the half ring
-  double angle_deg = 0.0;           // material angle of that peak
+  double angle_deg = 0.0;           // material angle of the first point at that peak
+  // Every place the optimal field reaches the peak (runs of adjacent points merged): the
+  // optimum touches it at ≥ 2 places (equioscillation), the hinges of the collapse field.
+  std::vector<double> peak_angles_deg;
   double horizontal_force_n = 0.0;  // H at the section through A (the optimum)
   double moment_a_nm = 0.0;         // M_A (the optimum)
   std::vector<double> moment_nm;    // M at every shape point (the optimal field)

@@ -44,6 +44,10 @@ TEST(Level3Statics, RingBetweenPlatesAtOnsetIsTheFourHingeField) {
     if (from_hinge > 10.0 * pi / 180.0) off_hinge = std::max(off_hinge, std::abs(st.moment_nm[k]) / M0);
   }
   EXPECT_LT(off_hinge, 0.98);  // |1 − 2 sin 80°| = 0.970 is the largest 10° off a hinge
+  ASSERT_EQ(st.peak_angles_deg.size(), 3u);  // the field touches M0 at A, C and B only
+  EXPECT_NEAR(st.peak_angles_deg[0], 0.0, 1e-9);
+  EXPECT_NEAR(st.peak_angles_deg[1], 90.0, 1e-9);
+  EXPECT_NEAR(st.peak_angles_deg[2], 180.0, 1e-9);
   EXPECT_GT(off_hinge, 0.96);
 }
 
