@@ -7,8 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
+#include "compare/hinge_run_level3.hpp"
+#include "compare/scene.hpp"
 #include "hinge/level3_mechanism.hpp"
 #include "hinge/level3_travelling_e.hpp"
 
@@ -165,4 +170,26 @@ TEST(Level3TravellingE, ChainWithShearFreeEIsUnchangedAndPlacesE) {
     EXPECT_TRUE(reported);
   }
   EXPECT_GE(under, 2);  // rings 2, 4 under the wraps of rings 1, 3
+}
+
+// The scene option: [hinge] level3_hinge_e = "fixed" (default) | "shear_free" reaches the
+// Level 3 input; any other value is a scene error naming the key.
+TEST(Level3TravellingE, SceneOptionReachesTheRunAndBadValuesAreRejected) {
+  std::ifstream f(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  std::stringstream buf;
+  buf << f.rdbuf();
+  const std::string text = buf.str();
+  const auto pos = text.find("[hinge]");
+  ASSERT_NE(pos, std::string::npos);
+  auto with = [&](const std::string& line) { return text.substr(0, pos + 7) + "\n" + line + text.substr(pos + 7); };
+  const auto plain = ringcrush::compare::parse_scene(text, "t30.toml");
+  EXPECT_EQ(ringcrush::compare::level3_input(plain, {}).hinge_e, Level3HingeE::Fixed);
+  const auto sf = ringcrush::compare::parse_scene(with("level3_hinge_e = \"shear_free\""), "t30.toml");
+  EXPECT_EQ(ringcrush::compare::level3_input(sf, {}).hinge_e, Level3HingeE::ShearFree);
+  try {
+    ringcrush::compare::parse_scene(with("level3_hinge_e = \"sideways\""), "bad.toml");
+    ADD_FAILURE() << "accepted level3_hinge_e = sideways";
+  } catch (const ringcrush::compare::SceneError& e) {
+    EXPECT_NE(e.key().find("level3_hinge_e"), std::string::npos) << e.key();
+  }
 }
