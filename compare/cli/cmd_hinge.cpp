@@ -81,7 +81,7 @@ void run(const HingeOptions& o) {
       fmt::print("{:5d} {:10.3f} {:8.4f}  {}\n", i + 1, r.crush_ratio[i] * scene.rings.outer_diameter_m * 1e3,
                  r.crush_ratio[i], i < r.mode.size() ? r.mode[i] : "");
     if (r.extra.contains("moment_ratio_max")) {  // Level 3 statics check (> 1: another hinge needed)
-      fmt::print("largest |M|/M0 per ring (statics check):");
+      fmt::print("largest |M|/M_p per ring (statics check; M_p = M0 x Redwood factor):");
       for (const auto& v : r.extra["moment_ratio_max"]) fmt::print(" {:.3f}", v.get<double>());
       fmt::print("\n");
     }
