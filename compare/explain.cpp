@@ -105,6 +105,12 @@ std::vector<std::string> explain_hinge(const Scene& s) {
   else if (s.hinge.level == "0" || s.hinge.level == "1" || s.hinge.level == "shock")
     e.push_back("no ring shapes: this level has a few degrees of freedom per ring, so the wrap flag comes from "
                 "the crush alone (never set)");
+  if (s.hinge.level == "3")
+    e.push_back(s.hinge.level3_hinge_e == HingeSettings::Level3HingeE::ShearFree
+                    ? std::string("Level 3: hinge E of a ring under a wrap at the least-load (shear-free) place beyond the held cap, "
+                                  "reported; statics check |M| <= M0 per ring (hinge.level3_hinge_e)")
+                    : std::string("Level 3: hinge E of a ring under a wrap fixed at 45°, reported; statics check |M| <= M0 per "
+                                  "ring (hinge.level3_hinge_e)"));
   e.push_back("the FE model is not built by the hinge run");
   return e;
 }

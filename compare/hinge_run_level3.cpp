@@ -35,6 +35,8 @@ hinge::Level3Input level3_input(const Scene& scene, const Level3RunOptions& extr
     in.theta_f = theta_f_deg * std::numbers::pi / 180.0;
     in.hinge_f = hinge::Level3HingeF::LeastOnsetLoad;  // a given θ_F overrides the placement
   }
+  in.hinge_e = scene.hinge.level3_hinge_e == HingeSettings::Level3HingeE::ShearFree ? hinge::Level3HingeE::ShearFree
+                                                                                    : hinge::Level3HingeE::Fixed;
   return in;
 }
 
@@ -130,6 +132,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
   }
   nlohmann::json hinge_map = nlohmann::json::array();
   nlohmann::json mech = nlohmann::json::array();
+  nlohmann::json moment_ratio = nlohmann::json::array();
   for (std::size_t i = 0; i < res.rings.size(); ++i) {
     const auto& rr = res.rings[i];
     const auto m = measure_wrap(shapes[i], i + 1 < shapes.size() ? &shapes[i + 1] : nullptr, ring.mean_radius(),
@@ -148,7 +151,24 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
     mech.push_back({{"ring", i + 1}, {"mechanism", hinge::to_string(rr.mode)}, {"wrap_selected", rr.wrap_started},
                     {"under_wrap", rr.reinforced}, {"uniform_crush_m", rr.uniform_crush_m},
                     {"wrap_crush_m", rr.wrap_crush_m}, {"bottom_crush_m", rr.bottom_crush_m},
-                    {"plastic_work_J", rr.plastic_work_j}});
+                    {"plastic_work_J", rr.plastic_work_j},
+                    // statics check (hinge/level3_statics.hpp): > 1 means another hinge needed
+                    {"moment_ratio_max", rr.peak_moment_ratio},
+                    {"moment_ratio_max_angles_deg", rr.peak_moment_angles_deg},
+                    {"moment_ratio_max_time_s", rr.peak_moment_time_s}});
+    if (rr.reinforced) {  // hinge E of the ring under a wrap (hinge/level3_travelling_e.hpp)
+      mech.back()["held_cap_deg"] = rr.held_cap * 180.0 / std::numbers::pi;
+      mech.back()["theta_E_deg"] = rr.theta_e * 180.0 / std::numbers::pi;
+      mech.back()["E_mechanism_load_N"] = rr.e_mechanism_load_n;
+      mech.back()["bottom_load_N"] = rr.bottom_load_n;
+      mech.back()["onset"] = {{"held_cap_deg", rr.held_cap_onset * 180.0 / std::numbers::pi},
+                              {"theta_E_deg", rr.theta_e_onset * 180.0 / std::numbers::pi},
+                              {"E_mechanism_load_N", rr.e_onset_load_n},
+                              {"bottom_load_N", rr.bottom_onset_load_n}};
+      mech.back()["E_cheaper_states"] = rr.e_cheaper_states;
+      mech.back()["E_cheaper_from_s"] = rr.e_cheaper_time_s >= 0 ? nlohmann::json(rr.e_cheaper_time_s) : nlohmann::json();
+    }
+    moment_ratio.push_back(rr.peak_moment_ratio);
   }
   for (const auto& e : res.events) r.events.push_back({e.time_s, e.kind, e.ring, e.detail});
   r.statistics.steps = res.outcome.statistics.steps;
@@ -167,6 +187,8 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
              {"theta_F_deg", res.theta_f * 180.0 / std::numbers::pi},
              {"hinge_F", in.theta_f >= 0 ? "fixed" : hinge::to_string(in.hinge_f)},
              {"theta_F_final_deg", theta_f_final(res) * 180.0 / std::numbers::pi},
+             {"hinge_E", hinge::to_string(in.hinge_e)},
+             {"moment_ratio_max", moment_ratio},
              {"collapse_load_N", ring.collapse_load()},
              {"wrap_onset_load_N", wrap.load.front()},
              {"wrap_min_load_N", *std::min_element(wrap.load.begin(), wrap.load.end())},

@@ -402,6 +402,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
          {"shear_free", HingeSettings::Level3HingeF::ShearFree}},
         h.level3_hinge_f);
     h.level3_theta_f_deg = r.number("level3_theta_f_deg", h.level3_theta_f_deg);
+    h.level3_hinge_e = r.choice<HingeSettings::Level3HingeE>(
+        "level3_hinge_e",
+        {{"fixed", HingeSettings::Level3HingeE::Fixed}, {"shear_free", HingeSettings::Level3HingeE::ShearFree}},
+        h.level3_hinge_e);
     require(h.level3_theta_f_deg < 0 || (h.level3_theta_f_deg > 90 && h.level3_theta_f_deg < 180), r,
             "level3_theta_f_deg",
             fmt::format("{} must lie in (90, 180) (or be negative: F placed by level3_hinge_f)", h.level3_theta_f_deg));

@@ -118,6 +118,9 @@ struct HingeSettings {
   // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
   enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;
   double level3_theta_f_deg = -1.0;
+  // Level 3 hinge E of a ring under a wrap (hinge/level3_travelling_e.hpp): fixed at 45°, or
+  // the least-load (shear-free) E beyond the held cap, re-found at every output state.
+  enum class Level3HingeE { Fixed, ShearFree } level3_hinge_e = Level3HingeE::Fixed;
 };
 
 struct Outputs {

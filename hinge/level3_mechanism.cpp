@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "level3_statics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,6 +30,16 @@ void Level3Input::validate() const {
     throw std::invalid_argument("Level3Input: theta_F must lie in (90°, 180°)");
   if (theta_f >= 0 && hinge_f == Level3HingeF::ShearFree)
     throw std::invalid_argument(fmt::format("Level3Input: theta_F = {} rad fixes F, but hinge_f = shear_free makes it travel", theta_f));
+  if (!(theta_e >= 0 && theta_e <= 89.0 * pi / 180.0))
+    throw std::invalid_argument(fmt::format("Level3Input: theta_E = {} rad outside [0°, 89°]", theta_e));
+}
+
+std::string to_string(Level3HingeE h) {
+  switch (h) {
+    case Level3HingeE::Fixed: return "fixed";
+    case Level3HingeE::ShearFree: return "shear_free";
+  }
+  return "?";
 }
 
 std::string to_string(Level3Mode m) {
@@ -546,6 +558,25 @@ Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options
   if (!running) chain.record(0.0, y, res.history);
   else if (!record_history && !last.empty()) chain.record(t_last, last, res.history);
   chain.finish(y, res);
+  // Statics check and E on the output states (first and last only without a history): at
+  // most ~200 evenly spread, plus every state where a ring changes mechanism (the events,
+  // where the loads jump), plus the last — a check costs ≈ 0.2 ms, the runs keep thousands.
+  const auto& h = res.history;
+  const std::size_t ns = h.time_s.size(), stride = std::max<std::size_t>(1, ns / 200);
+  auto changed = [&](std::size_t k) {
+    if (k == 0) return true;
+    for (std::size_t i = 0; i < h.ring_state[k].size(); ++i) {
+      const auto &a = h.ring_state[k][i], &b = h.ring_state[k - 1][i];
+      if (a.wrap_started != b.wrap_started || a.reinforced != b.reinforced) return true;
+    }
+    return false;
+  };
+  for (std::size_t k = 0; k < ns; ++k)
+    if (k % stride == 0 || k + 1 == ns || changed(k))
+      level3_check_states(in, res.wrap, h.ring_state[k], h.force_n[k], h.time_s[k], res.rings);
+  for (auto& rr : res.rings)
+    for (auto& hg : rr.hinges)
+      if (hg.name == "E") hg.angle_deg = rr.theta_e * 180.0 / pi;
   return res;
 }
 

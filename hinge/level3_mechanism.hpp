@@ -106,6 +106,13 @@ WrapMechanism level3_travelling_wrap_mechanism(const Level3Ring& r, int samples 
 // How F is placed when no θ_F is given.
 enum class Level3HingeF { LeastOnsetLoad, ShearFree };
 std::string to_string(Level3HingeF);
+// How E of a ring under a wrap is placed (hinge/level3_travelling_e.hpp): Fixed at
+// Level3Input::theta_e, or ShearFree: the least-load E–C–B hinge on the current shape beyond
+// the cap held by the wrapped ring, re-found at every output state. E is reported (hinge map,
+// E–C–B load against the flowing bottom mechanism); the chain's bottom mechanism does not
+// turn E.
+enum class Level3HingeE { Fixed, ShearFree };
+std::string to_string(Level3HingeE);
 
 struct Level3Input {
   int rings = 6;
@@ -116,6 +123,7 @@ struct Level3Input {
   double theta_f = -1.0;            // >= 0: F fixed there; < 0: placed by hinge_f
   Level3HingeF hinge_f = Level3HingeF::LeastOnsetLoad;
   double theta_e = 0.7853981633974483;  // edge of the held cap (reported only)
+  Level3HingeE hinge_e = Level3HingeE::Fixed;
   void validate() const;
 };
 
@@ -138,6 +146,18 @@ struct Level3RingResult {
   bool reinforced = false;           // under a wrapping ring
   std::vector<Level3Hinge> hinges;
   double plastic_work_j = 0.0;
+  // Statics check (hinge/level3_statics.hpp) over the output states: the largest lower-bound
+  // ratio max|M|/M_p under the chain force, where and when (ratio > 1: another hinge needed);
+  // M_p = M0 times the flowing mechanism's Redwood factor (1 + kφ, 1 + kψ; 1 for the wrap).
+  double peak_moment_ratio = 0.0, peak_moment_angle_deg = 0.0, peak_moment_time_s = 0.0;
+  std::vector<double> peak_moment_angles_deg;  // every place the field reaches that peak
+  // Under a wrap, at the last state: the held cap edge, E (Fixed: theta_e; ShearFree: the
+  // least-load E), the E–C–B load there and the bottom mechanism's load (both N).
+  double held_cap = 0.0, theta_e = 0.0, e_mechanism_load_n = 0.0, bottom_load_n = 0.0;
+  int e_cheaper_states = 0;  // checked states where E–C–B needed less load than the bottom mode
+  double e_cheaper_time_s = -1.0;  // the first of them (−1: none); locked states are skipped
+  // The same at the first output state under the wrap (the reinforcement event).
+  double held_cap_onset = 0.0, theta_e_onset = 0.0, e_onset_load_n = 0.0, bottom_onset_load_n = 0.0;
 };
 
 struct Level3History {

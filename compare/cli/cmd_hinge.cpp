@@ -80,6 +80,11 @@ void run(const HingeOptions& o) {
     for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
       fmt::print("{:5d} {:10.3f} {:8.4f}  {}\n", i + 1, r.crush_ratio[i] * scene.rings.outer_diameter_m * 1e3,
                  r.crush_ratio[i], i < r.mode.size() ? r.mode[i] : "");
+    if (r.extra.contains("moment_ratio_max")) {  // Level 3 statics check (> 1: another hinge needed)
+      fmt::print("largest |M|/M_p per ring (statics check; M_p = M0 x Redwood factor):");
+      for (const auto& v : r.extra["moment_ratio_max"]) fmt::print(" {:.3f}", v.get<double>());
+      fmt::print("\n");
+    }
     if (scene.analysis.type == AnalysisType::Static) {
       fmt::print("\nmax force {:.1f} N at final deflection {:.3f} mm\n", summary["max_force_N"].get<double>(),
                  summary["final_deflection_m"].get<double>() * 1e3);
