@@ -92,6 +92,7 @@ class ChainModel final : public DynamicSystem {
   void commit(const Eigen::VectorXd& u) override;
   SparseSystem& tangent_system() override;
   StableStep stable_step(const Eigen::VectorXd& u) const override;
+  StableStep contact_stable_step(const Eigen::VectorXd& u) const override;
   // Bulk viscosity (ChainInput::bulk_viscosity > 0): the next evaluate() forms the element
   // volumetric strain rates over this step; 0 switches it off.
   void set_increment_time(double dt) override;
@@ -108,6 +109,10 @@ class ChainModel final : public DynamicSystem {
   double ring_extent(int ring, const Eigen::VectorXd& u) const;
   // Point-averaged Mises and PEEQ per element, committed states.
   std::vector<Cps8Fields> element_fields() const;
+  // StepBound::Assembled: stable_step() calls, power iterations, calls that fell back to
+  // the element bound (iteration not settled).
+  struct StepBoundStatistics { long calls = 0, iterations = 0, fallbacks = 0; };
+  StepBoundStatistics step_bound_statistics() const;
   // Largest committed point PEEQ of each ring.
   std::vector<double> max_peeq_per_ring() const;
 

@@ -61,6 +61,10 @@ class DynamicRun {
       ExplicitDriver d(model_, o);
       loop(d, res);
       res.statistics.step_limited_by = d.limited_by();
+      res.statistics.full_bounds = d.full_bounds();
+      res.statistics.contact_bounds = d.contact_bounds();
+      res.statistics.bound_iterations = model_.step_bound_statistics().iterations;
+      res.statistics.bound_fallbacks = model_.step_bound_statistics().fallbacks;
     } else {
       HhtOptions o;
       o.alpha = solver_.alpha;
@@ -191,7 +195,7 @@ class DynamicRun {
         // The stable step drops when a contact closes (its penalty stiffness joins ω_max).
         if (model_.contact_forces().active != active) {
           active = model_.contact_forces().active;
-          d.request_stable_step();
+          d.request_contact_bound();
         }
       }
       const auto& u = d.displacement();
