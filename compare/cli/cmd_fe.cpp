@@ -48,6 +48,7 @@ struct FeOptions {
   int elements_around = 0;  // > 0: overrides fe.elements_around
   double end_time_s = 0;    // > 0: overrides analysis.end_time_s of a dynamic scene (timings)
   int threads = 0;          // element-loop threads of a dynamic run (0: automatic, chain_input.hpp)
+  std::string step_bound;   // explicit: "element" (default) | "assembled" (fe/chain/chain_input.hpp)
 };
 
 const char* integration_name(fe::Integration i) {
@@ -116,6 +117,7 @@ Scene scene_with_overrides(const FeOptions& o) {
 void run_fe_dynamic(const Scene& s, const FeOptions& o) {
   fe::ChainInput chain = fe_chain_input(s);
   chain.threads = o.threads;
+  if (o.step_bound == "assembled") chain.step_bound = fe::StepBound::Assembled;
   const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
   if (!o.quiet) {
     echo_dynamic(s, chain, solver);
@@ -178,6 +180,9 @@ void add_fe_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", o->threads, "Dynamic scenes: element-loop threads (0 automatic, 1, 2)")
       ->check(CLI::Range(0, 2));
+  cmd->add_option("--step-bound", o->step_bound,
+                  "Explicit: stable-step omega_max from the element bound or the assembled power-iteration estimate")
+      ->check(CLI::IsMember({"element", "assembled"}));
   cmd->callback([o] { run_fe(*o); });
 }
 

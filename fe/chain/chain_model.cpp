@@ -252,7 +252,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
   for (int p : mesh_.plate_nodes) m.mass(2 * p) = m.mass(2 * p + 1) = share * input.plate_mass_kg;
   if (input.step_bound == StepBound::Assembled) {
-    // M^{-1/2} on the free dofs that carry element stiffness (not the rigid bodies: no K).
+    // M^{-1/2} on the free dofs.
     Eigen::VectorXd inv_sqrt = Eigen::VectorXd::Zero(2 * nodes);
     std::vector<std::array<int, 16>> dofs(ne);
     for (int e = 0; e < ne; ++e)
@@ -263,6 +263,10 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
         inv_sqrt(2 * n) = 1 / std::sqrt(m.mass(2 * n));
         inv_sqrt(2 * n + 1) = 1 / std::sqrt(m.mass(2 * n + 1));
       }
+    // The rigid bodies (impactor, plates) have no element stiffness but their contact
+    // springs load them.
+    inv_sqrt(2 * mesh_.impactor_node + 1) = 1 / std::sqrt(m.mass(2 * mesh_.impactor_node + 1));
+    for (int p : mesh_.plate_nodes) inv_sqrt(2 * p + 1) = 1 / std::sqrt(m.mass(2 * p + 1));
     for (int d : m.topo.fixed_dofs) inv_sqrt(d) = 0;
     m.stiffness_scale.assign(ne, 1.0);
     m.assembled = std::make_unique<AssembledEigenvalue>(std::move(dofs), std::move(inv_sqrt));
@@ -384,6 +388,8 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
           ContactContribution& c = m.contributions.emplace_back();
           c.nodes[0] = node;
           c.force(1) = k * gap * face.dir;
+          c.stiffness = k;
+          c.gap = gap;
           if (face.body_node >= 0) {
             c.count = 2;
             c.nodes[1] = face.body_node;
@@ -426,6 +432,8 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
       cf.deepest_ring = ss.deepest_master_ring;
     }
     contact_energy += ss.energy;
+    for (const auto& c : m.contributions)  // FNV-1a over the slave nodes, in the (fixed) search order
+      cf.active_set = (cf.active_set ^ static_cast<std::uint64_t>(c.nodes[0] + 1)) * 1099511628211ULL;
     m.surface_near_omega2 = ss.near_omega2;
     m.surface_near_node = ss.near_node;
     contact_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -553,27 +561,6 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
   }
   m.element_omega2 = el;
   m.element_limited_by = fmt::format("element {} (ring {})", worst + 1, mesh_.element_ring[worst] + 1);
-  if (assembled) {
-    // The assembled estimate (assembled_eigenvalue.hpp), with the same scaled element
-    // matrices as the element bound: θ·margin, never above the element bound, and the
-    // element bound itself when the iteration has not settled. The first call starts from
-    // a random vector and iterates long; later calls follow the highest mode from the last
-    // iterate.
-    const bool first = m.assembled_calls++ == 0;
-    const AssembledEstimate est = m.assembled->estimate(m.stiffness_exact, m.stiffness_scale, first ? 200 : 4,
-                                                        first ? 2000 : 200, 1e-4);
-    m.assembled_iterations += est.iterations;
-    if (est.converged && est.lambda > 0) {
-      const double sharp = input_.step_bound_margin * est.lambda;
-      if (sharp < el) {
-        m.element_limited_by = fmt::format("assembled power iteration ({} it., {:.3f} of the element bound, {})",
-                                           est.iterations, std::sqrt(sharp / el), m.element_limited_by);
-        m.element_omega2 = sharp;
-      }
-    } else {
-      ++m.assembled_fallbacks;
-    }
-  }
   return contact_stable_step(u);
 }
 
@@ -581,7 +568,7 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
 // with the contact springs of the last evaluate(): the re-bound after a change of the
 // contact activity, which on the thesis chain happens every few steps.
 StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
-  const Impl& m = *impl_;
+  Impl& m = *impl_;
   if (!(m.element_omega2 > 0)) throw std::logic_error("ChainModel::contact_stable_step before stable_step");
   const double el = m.element_omega2;
   // Contact springs of the last evaluation within one element depth (active or about to
@@ -589,16 +576,38 @@ StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
   const bool surface_wins = m.surface_near_omega2 > m.face_near_omega2;
   const double contact = std::max(m.surface_near_omega2, m.face_near_omega2);
   const int contact_node = surface_wins ? m.surface_near_node : m.face_near_node;
+  double w2 = el + contact;
+  std::string limited_by = contact > el ? fmt::format("contact penalty, node {}", contact_node + 1) : m.element_limited_by;
+  if (input_.step_bound == StepBound::Assembled) {
+    // The assembled estimate (assembled_eigenvalue.hpp) of the scaled element matrices and
+    // the ACTIVE penalty springs (k G Gᵀ) together, instead of the sum of the largest element
+    // and the largest spring frequency²: θ·margin, never above that sum, and the sum itself
+    // when the iteration has not settled. A spring that closes changes the active set, so
+    // the driver re-bounds before the next step (run_dynamic). The first call starts from a
+    // random vector and iterates long; later calls follow the highest mode from the last
+    // iterate.
+    const bool first = m.assembled_calls++ == 0;
+    const AssembledEstimate est = m.assembled->estimate(m.stiffness_exact, m.stiffness_scale, first ? 200 : 3,
+                                                        first ? 2000 : 200, 1e-4, m.contributions);
+    m.assembled_iterations += est.iterations;
+    if (est.converged && est.lambda > 0) {
+      const double sharp = input_.step_bound_margin * est.lambda;
+      if (sharp < w2) {
+        limited_by = fmt::format("assembled power iteration ({} it., {:.3f} of the element + contact bound, {})",
+                                 est.iterations, std::sqrt(sharp / w2), limited_by);
+        w2 = sharp;
+      }
+    } else {
+      ++m.assembled_fallbacks;
+    }
+  }
   StableStep s;
-  s.step_s = 2.0 / std::sqrt(el + contact);
+  s.step_s = 2.0 / std::sqrt(w2);
   // Bulk viscosity damps the highest mode at ξ = b1: the central-difference limit becomes
   // Δt ≤ (2/ω_max)(√(1 + ξ²) − ξ) (ABAQUS Analysis Guide, explicit stability limit).
   const double xi = input_.bulk_viscosity;
   if (xi > 0) s.step_s *= std::sqrt(1 + xi * xi) - xi;
-  if (contact > el)
-    s.limited_by = fmt::format("contact penalty, node {}", contact_node + 1);
-  else
-    s.limited_by = m.element_limited_by;
+  s.limited_by = limited_by;
   return s;
 }
 

@@ -28,6 +28,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -68,6 +69,9 @@ struct ChainContactForces {
   Surface deepest_into = Surface::None;
   int deepest_ring = -1;
   int active = 0;              // active contact points
+  // Hash of the sequence of active slave nodes: it changes when the SET of active contacts
+  // changes, also at the same count (the explicit driver re-bounds its step on it).
+  std::uint64_t active_set = 0;
   int pairs_checked = 0;       // ring pairs that passed the broad phase
   long candidate_pairs = 0;    // (node, surface piece) pairs in the contact candidate list
   long list_rebuilds = 0;      // candidate-list builds so far (ring_pair_contact.hpp)

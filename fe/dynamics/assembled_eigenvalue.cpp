@@ -26,7 +26,8 @@ AssembledEigenvalue::AssembledEigenvalue(std::vector<std::array<int, 16>> elemen
 
 // y = M^{-1/2} (Σ_e s_e K_e) M^{-1/2} x.
 void AssembledEigenvalue::apply(const std::vector<ElementMatrix>& k, const std::vector<double>& scale,
-                                const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+                                const std::vector<ContactContribution>& springs, const Eigen::VectorXd& x,
+                                Eigen::VectorXd& y) const {
   y.setZero();
   ElementVector xe, ye;
   for (std::size_t e = 0; e < dofs_.size(); ++e) {
@@ -35,11 +36,29 @@ void AssembledEigenvalue::apply(const std::vector<ElementMatrix>& k, const std::
     ye.noalias() = k[e] * xe;
     for (int i = 0; i < 16; ++i) y(d[i]) += scale[e] * ye(i) * inv_sqrt_mass_(d[i]);
   }
+  // Penalty springs k G Gᵀ (the part of the contact tangent without the curvature terms).
+  for (const auto& c : springs) {
+    if (!(c.stiffness > 0) || !(c.gap < 0)) continue;
+    const double inv = 1.0 / (c.stiffness * c.gap);
+    double s = 0;
+    for (int a = 0; a < c.count; ++a)
+      for (int j = 0; j < 2; ++j) {
+        const int dof = 2 * c.nodes[a] + j;
+        s += c.force(2 * a + j) * inv * inv_sqrt_mass_(dof) * x(dof);
+      }
+    s *= c.stiffness;
+    for (int a = 0; a < c.count; ++a)
+      for (int j = 0; j < 2; ++j) {
+        const int dof = 2 * c.nodes[a] + j;
+        y(dof) += s * c.force(2 * a + j) * inv * inv_sqrt_mass_(dof);
+      }
+  }
 }
 
 AssembledEstimate AssembledEigenvalue::estimate(const std::vector<ElementMatrix>& stiffness,
                                                 const std::vector<double>& scale, int min_iterations,
-                                                int max_iterations, double tolerance) {
+                                                int max_iterations, double tolerance,
+                                                const std::vector<ContactContribution>& springs) {
   if (stiffness.size() != dofs_.size() || scale.size() != dofs_.size())
     throw std::invalid_argument(fmt::format("AssembledEigenvalue: {} matrices and {} scales for {} elements",
                                             stiffness.size(), scale.size(), dofs_.size()));
@@ -47,10 +66,14 @@ AssembledEstimate AssembledEigenvalue::estimate(const std::vector<ElementMatrix>
     throw std::invalid_argument(
         fmt::format("AssembledEigenvalue: iterations {}..{} (need 1 ≤ min ≤ max)", min_iterations, max_iterations));
   if (!(tolerance > 0)) throw std::invalid_argument(fmt::format("AssembledEigenvalue: tolerance {} must be > 0", tolerance));
+  for (const auto& c : springs)
+    for (int a = 0; a < c.count; ++a)
+      if (c.nodes[a] < 0 || 2 * c.nodes[a] + 1 >= inv_sqrt_mass_.size())
+        throw std::invalid_argument(fmt::format("AssembledEigenvalue: contact node {} outside the model", c.nodes[a]));
   AssembledEstimate out;
   double previous = 0;
   for (int it = 1; it <= max_iterations; ++it) {
-    apply(stiffness, scale, x_, y_);
+    apply(stiffness, scale, springs, x_, y_);
     // |x| = 1 and A ⪰ 0 (elastic element matrices, positive scales): the Rayleigh quotient
     // xᵀAx ≤ |Ax| ≤ λ_max, so |Ax| is the closer of the two lower estimates.
     const double norm = y_.norm();

@@ -16,6 +16,7 @@
 #include <array>
 #include <vector>
 
+#include "fe/contact/contact_element.hpp"
 #include "fe/element/cps8_element.hpp"
 
 namespace ringcrush::fe {
@@ -32,16 +33,18 @@ class AssembledEigenvalue {
   // fixed dofs (and on dofs without element stiffness, e.g. the rigid bodies).
   AssembledEigenvalue(std::vector<std::array<int, 16>> element_dofs, Eigen::VectorXd inv_sqrt_mass);
 
-  // λ_max of Σ_e scale_e K_e by power iteration from the last iterate, at least
-  // min_iterations and at most max_iterations; stops when θ changed by ≤ tolerance · θ.
-  // Throws std::invalid_argument on sizes that do not match the element count or bad
-  // iteration limits.
+  // λ_max of Σ_e scale_e K_e + Σ_c k_c G_c G_cᵀ by power iteration from the last iterate,
+  // at least min_iterations and at most max_iterations; stops when θ changed by
+  // ≤ tolerance · θ. springs: contact contributions with stiffness and gap set (others are
+  // skipped), G_c = force / (k g) on their nodes' dofs. Throws std::invalid_argument on sizes
+  // that do not match the element count or bad iteration limits.
   AssembledEstimate estimate(const std::vector<ElementMatrix>& stiffness, const std::vector<double>& scale,
-                             int min_iterations, int max_iterations, double tolerance);
+                             int min_iterations, int max_iterations, double tolerance,
+                             const std::vector<ContactContribution>& springs = {});
 
  private:
-  void apply(const std::vector<ElementMatrix>& k, const std::vector<double>& scale, const Eigen::VectorXd& x,
-             Eigen::VectorXd& y) const;
+  void apply(const std::vector<ElementMatrix>& k, const std::vector<double>& scale,
+             const std::vector<ContactContribution>& springs, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   std::vector<std::array<int, 16>> dofs_;
   Eigen::VectorXd inv_sqrt_mass_, x_, y_;

@@ -104,10 +104,11 @@ TEST(AssembledEigenvalue, RejectsBadInput) {
 }
 
 TEST(AssembledEigenvalue, ChainStepStaysBelowTheTrueLimitAndBeatsTheElementBound) {
-  // Two welded half rings pressed by the impactor (its penalty springs and those of the
-  // welded neighbours are in the truth and, as an additive bound, in both steps): the step
-  // stays safe. One ring alone, nothing near contact: the estimate has converged to the
-  // assembled λ_max (ω within √margin of the truth) and is well below the element bound.
+  // Two welded half rings pressed by the impactor (its penalty springs are in the truth; the
+  // element bound adds the largest spring frequency² near contact, the assembled estimate
+  // assembles the active springs), and one ring alone, nothing near contact: the step stays
+  // safe, the estimate has converged (ω within √margin of the truth), never above the
+  // element bound.
   for (Integration rule : {Integration::Reduced, Integration::Selective}) {
     for (int around : {4, 8}) {
       for (int rings : {1, 2}) {
@@ -131,15 +132,19 @@ TEST(AssembledEigenvalue, ChainStepStaysBelowTheTrueLimitAndBeatsTheElementBound
         const double sharp = 2 / s.step_s;
         SCOPED_TRACE(::testing::Message() << "rings " << rings << ", " << around << " around, " << s.limited_by
                                           << ": truth " << truth << ", assembled " << sharp << ", element " << element_bound);
-        EXPECT_GE(sharp, truth * (1 - 1e-9));  // still a safe step
-        EXPECT_LT(sharp, element_bound);
-        if (rings == 1) {
-          EXPECT_LE(sharp, std::sqrt(in.step_bound_margin) * truth * (1 + 1e-3));  // converged
-          EXPECT_LT(sharp, 0.95 * element_bound);
+        EXPECT_GE(sharp, truth * (1 - 1e-9));                                   // still a safe step
+        EXPECT_LE(sharp, std::sqrt(in.step_bound_margin) * truth * (1 + 1e-2));  // converged
+        EXPECT_LE(sharp, element_bound * (1 + 1e-12));
+        // The gain is the contact springs: with them (two rings) the element bound adds the
+        // largest spring's frequency² to the largest element's, though they are not one mode.
+        // (0.83 of it with 8 elements around, 0.95 with 4.)
+        if (rings == 2) {
+          EXPECT_LT(sharp, 0.97 * element_bound);
         }
         EXPECT_EQ(assembled_model.step_bound_statistics().fallbacks, 0);
-        // The contact-only re-bound reuses the element part: the same step, same contacts.
-        EXPECT_DOUBLE_EQ(assembled_model.contact_stable_step(u).step_s, s.step_s);
+        // The contact-only re-bound reuses the element part and iterates on from the last
+        // iterate: the same step to the iteration's tolerance, same contacts.
+        EXPECT_NEAR(assembled_model.contact_stable_step(u).step_s, s.step_s, 1e-3 * s.step_s);
       }
     }
   }
