@@ -17,7 +17,13 @@
 //  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues with the
 //    committed thickness λ3 of their points, re-solved when an element's shape or λ3 has
 //    changed by 5 %) and the contact springs of the LAST evaluate() within one element depth
-//    of contact; call it between evaluate() calls, on the driver's thread;
+//    of contact; call it between evaluate() calls, on the driver's thread; contact_stable_step()
+//    keeps the element part of the last stable_step() and updates the contact springs; with
+//    ChainInput::step_bound = Assembled both estimate the assembled system's ω_max² (elements
+//    and active penalty springs) by warm-started power iteration, times a margin, never above
+//    the element + contact bound (fe/dynamics/assembled_eigenvalue.hpp);
+//  - commit(u) only marks the element geometry stale: it is re-derived on x_n element by
+//    element in the next evaluate()'s element pass (with the bulk viscosity, over the threads);
 //  - bulk viscosity (ChainInput::bulk_viscosity, explicit only): a pressure at each stress
 //    point proportional to its volumetric strain rate over the step the driver announces through
 //    set_increment_time(), with L_e = 2 c_d / ω_e from the element eigenvalue; the force is
