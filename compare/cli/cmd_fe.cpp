@@ -46,6 +46,9 @@ struct FeOptions {
   bool explain = false;
   std::string solver;       // "explicit" | "hht": overrides fe.solver of a dynamic scene
   int elements_around = 0;  // > 0: overrides fe.elements_around
+  double end_time_s = 0;    // > 0: overrides analysis.end_time_s of a dynamic scene (timings)
+  int threads = 0;          // element-loop threads of a dynamic run (0: automatic, chain_input.hpp)
+  std::string step_bound;   // explicit: "element" (default) | "assembled" (fe/chain/chain_input.hpp)
 };
 
 const char* integration_name(fe::Integration i) {
@@ -103,11 +106,18 @@ Scene scene_with_overrides(const FeOptions& o) {
       throw std::invalid_argument("ringcrush fe: --solver applies to dynamic scenes only");
     s.fe.solver = o.solver == "hht" ? FeSolver::Hht : FeSolver::Explicit;
   }
+  if (o.end_time_s > 0) {
+    if (s.analysis.type == AnalysisType::Static)
+      throw std::invalid_argument("ringcrush fe: --end-time applies to dynamic scenes only");
+    s.analysis.end_time_s = o.end_time_s;
+  }
   return s;
 }
 
 void run_fe_dynamic(const Scene& s, const FeOptions& o) {
-  const fe::ChainInput chain = fe_chain_input(s);
+  fe::ChainInput chain = fe_chain_input(s);
+  chain.threads = o.threads;
+  if (o.step_bound == "assembled") chain.step_bound = fe::StepBound::Assembled;
   const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
   if (!o.quiet) {
     echo_dynamic(s, chain, solver);
@@ -166,6 +176,13 @@ void add_fe_command(CLI::App& app) {
       ->check(CLI::IsMember({"explicit", "hht"}));
   cmd->add_option("--elements-around", o->elements_around, "Override fe.elements_around (per half ring, even)")
       ->check(CLI::Range(8, 4096));
+  cmd->add_option("--end-time", o->end_time_s, "Dynamic scenes: override analysis.end_time_s (s)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", o->threads, "Dynamic scenes: element-loop threads (0 automatic, 1, 2)")
+      ->check(CLI::Range(0, 2));
+  cmd->add_option("--step-bound", o->step_bound,
+                  "Explicit: stable-step omega_max from the element bound or the assembled power-iteration estimate")
+      ->check(CLI::IsMember({"element", "assembled"}));
   cmd->callback([o] { run_fe(*o); });
 }
 

@@ -14,6 +14,12 @@ enum class JointKind {
   Plates,  // a rigid plate (one y dof, with mass) between each pair of neighbours
 };
 
+// The explicit stable step's ω_max (chain_model.hpp, stable_step): Element = the element
+// eigenvalue inequality, a guaranteed upper bound (≈ 1.2× ω_max on the thesis chain);
+// Assembled = a power-iteration estimate of the assembled system's ω_max² times
+// step_bound_margin, never above the element bound (fe/dynamics/assembled_eigenvalue.hpp).
+enum class StepBound { Element, Assembled };
+
 struct ChainInput {
   int rings = 6;
   RingInput ring;            // every ring is the same (Reid & Reddy chains)
@@ -39,6 +45,8 @@ struct ChainInput {
   // two idle cores and the chain at least 64 elements), 1 = one, 2 = two. The results are
   // bitwise the same either way.
   int threads = 0;
+  StepBound step_bound = StepBound::Element;
+  double step_bound_margin = 1.05;  // Assembled: ω² = margin · θ, in [1, 2]
 };
 
 // Throws std::invalid_argument naming the first inconsistent value.

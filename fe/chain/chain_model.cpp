@@ -15,6 +15,7 @@
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
+#include "fe/dynamics/assembled_eigenvalue.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
 #include "fe/material/j2_plane_stress.hpp"
@@ -77,6 +78,16 @@ struct ChainModel::Impl {
   // and the shape measure there; in between λ is scaled with the shape measure.
   std::vector<std::array<double, 8>> element_mass;
   std::vector<double> omega2_exact, shape_exact, thickness_exact;
+  std::vector<Eigen::Vector2d> x_bound;  // current coordinates (stable_step)
+  // The element part of the last stable_step() (ω² and what set it), reused by
+  // contact_stable_step().
+  double element_omega2 = 0;
+  std::string element_limited_by;
+  // StepBound::Assembled: K_e at the last exact evaluation, its scale since, the estimator.
+  std::vector<ElementMatrix> stiffness_exact;
+  std::vector<double> stiffness_scale;
+  std::unique_ptr<AssembledEigenvalue> assembled;
+  long assembled_calls = 0, assembled_iterations = 0, assembled_fallbacks = 0;
   ChainContactForces forces;
   std::vector<std::pair<int, double>> pressure;
   double face_near_omega2 = 0, surface_near_omega2 = 0;
@@ -93,7 +104,9 @@ struct ChainModel::Impl {
   // depend on timing).
   std::unique_ptr<ForkJoin> fork;
   int split = 0;
-  Eigen::VectorXd helper_force;
+  Eigen::VectorXd helper_force, helper_viscous;
+  // commit() moved x_n: the element geometry is re-derived in the next element pass.
+  bool geometry_stale = false;
   std::vector<ElementMatrix> tangents;  // want_tangent with two threads: scattered after the join
 
   explicit Impl(const ChainInput& in)
@@ -105,48 +118,52 @@ struct ChainModel::Impl {
         updater(in.integration),
         width(in.ring.width_m) {}
 
-  // Bulk-viscous forces of every element for the increment u − u_n over increment_time
-  // (bulk_viscosity.hpp) into q (all dofs).
-  void bulk_viscous(const Eigen::VectorXd& u, Eigen::VectorXd& q) const {
-    q.setZero(u.size());
-    double ue[16];
-    ElementVector fe;
-    const auto& elems = topo.mesh.elements;
-    for (std::size_t e = 0; e < elems.size(); ++e) {
-      const auto& conn = elems[e];
-      for (int a = 0; a < 8; ++a) {
-        ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
-        ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
-      }
-      fe.setZero();
-      add_bulk_viscous_force(geometry[e], ue, increment_time, bulk_scale / std::sqrt(omega2_exact[e]), fe);
-      for (int a = 0; a < 8; ++a) {
-        q(2 * conn[a]) += fe(2 * a);
-        q(2 * conn[a] + 1) += fe(2 * a + 1);
-      }
-    }
-  }
-
   // Elements [e0, e1): force into `force` (all dofs), energies returned; the tangent goes
-  // straight into the system (serial) or into `tangents` (threads).
+  // straight into the system (serial) or into `tangents` (threads). Two things ride along in
+  // the same pass over the elements, so that they are split over the threads too and each
+  // element is touched once per evaluation (performance, DESIGN.md):
+  //  - the geometry on x_n when a commit has moved it (geometry_stale; commit() only marks
+  //    it: the element is re-referenced just before its first evaluation of the increment);
+  //  - the bulk-viscous force of the increment (bulk_viscosity.hpp) into `viscous` (all
+  //    dofs; null when off): b1 ρ c_d L_e with L_e = 2 c_d / ω_e, ω_e the element eigenvalue.
   void elements(int e0, int e1, const Eigen::VectorXd& u, bool want_tangent, bool store_tangent, double* force,
-                double& elastic, double& plastic) {
+                double* viscous, double& elastic, double& plastic) {
     Cps8Output eo;
+    ElementVector fv;
     double ue[16];
     const int ppe = points_per_element;
     elastic = plastic = 0;
     const auto& elems = topo.mesh.elements;
     for (int e = e0; e < e1; ++e) {
+      if (geometry_stale) regeometry(e, e + 1, u_n);
       const auto& conn = elems[e];
       for (int a = 0; a < 8; ++a) {
         ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
         ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
       }
       const std::size_t p0 = static_cast<std::size_t>(e) * ppe;
-      cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, want_tangent, eo);
+      if (viscous) {
+        fv.setZero();
+        const double coefficient = bulk_scale / std::sqrt(omega2_exact[e]);
+        if (want_tangent) {
+          cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, true, eo);
+          add_bulk_viscous_force(geometry[e], ue, increment_time, coefficient, fv);
+        } else {
+          const BulkViscousLoad load{coefficient, increment_time, &fv};
+          cps8_force(geometry[e], ue, &committed[p0], &trial[p0], material, eo, &load);
+        }
+      } else {
+        cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, want_tangent, eo);
+      }
       for (int a = 0; a < 8; ++a) {
         force[2 * conn[a]] += eo.force(2 * a);
         force[2 * conn[a] + 1] += eo.force(2 * a + 1);
+      }
+      if (viscous) {
+        for (int a = 0; a < 8; ++a) {
+          viscous[2 * conn[a]] += fv(2 * a);
+          viscous[2 * conn[a] + 1] += fv(2 * a + 1);
+        }
       }
       elastic += eo.elastic_energy;
       plastic += eo.plastic_work;
@@ -179,21 +196,15 @@ struct ChainModel::Impl {
     Impl* model;
     const Eigen::VectorXd* u;
     bool want_tangent;
+    bool viscous;
     double elastic = 0, plastic = 0;
     static void run(void* p) {
       auto& j = *static_cast<ElementJob*>(p);
       auto& m = *j.model;
       m.helper_force.setZero();
+      if (j.viscous) m.helper_viscous.setZero();
       m.elements(m.split, static_cast<int>(m.topo.mesh.elements.size()), *j.u, j.want_tangent, true,
-                 m.helper_force.data(), j.elastic, j.plastic);
-    }
-  };
-  struct GeometryJob {
-    Impl* model;
-    const Eigen::VectorXd* u;
-    static void run(void* p) {
-      auto& j = *static_cast<GeometryJob*>(p);
-      j.model->regeometry(j.model->split, static_cast<int>(j.model->topo.mesh.elements.size()), *j.u);
+                 m.helper_force.data(), j.viscous ? m.helper_viscous.data() : nullptr, j.elastic, j.plastic);
     }
   };
 };
@@ -233,11 +244,33 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
       m.mass(2 * mesh_.elements[e][a] + 1) += me[a];
     }
     m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
-    m.omega2_exact[e] = element_max_eigenvalue(xe, me, input.integration, input.ring.width_m, m.material);
+    const ElementMatrix k = element_elastic_stiffness(xe, input.integration, input.ring.width_m, m.material);
+    m.omega2_exact[e] = element_max_eigenvalue(k, me);
+    if (input.step_bound == StepBound::Assembled) m.stiffness_exact.push_back(k);
     m.shape_exact[e] = shape_measure(mesh_.elements[e], mesh_.nodes);
   }
   m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
   for (int p : mesh_.plate_nodes) m.mass(2 * p) = m.mass(2 * p + 1) = share * input.plate_mass_kg;
+  if (input.step_bound == StepBound::Assembled) {
+    // M^{-1/2} on the free dofs.
+    Eigen::VectorXd inv_sqrt = Eigen::VectorXd::Zero(2 * nodes);
+    std::vector<std::array<int, 16>> dofs(ne);
+    for (int e = 0; e < ne; ++e)
+      for (int a = 0; a < 8; ++a) {
+        const int n = mesh_.elements[e][a];
+        dofs[e][2 * a] = 2 * n;
+        dofs[e][2 * a + 1] = 2 * n + 1;
+        inv_sqrt(2 * n) = 1 / std::sqrt(m.mass(2 * n));
+        inv_sqrt(2 * n + 1) = 1 / std::sqrt(m.mass(2 * n + 1));
+      }
+    // The rigid bodies (impactor, plates) have no element stiffness but their contact
+    // springs load them.
+    inv_sqrt(2 * mesh_.impactor_node + 1) = 1 / std::sqrt(m.mass(2 * mesh_.impactor_node + 1));
+    for (int p : mesh_.plate_nodes) inv_sqrt(2 * p + 1) = 1 / std::sqrt(m.mass(2 * p + 1));
+    for (int d : m.topo.fixed_dofs) inv_sqrt(d) = 0;
+    m.stiffness_scale.assign(ne, 1.0);
+    m.assembled = std::make_unique<AssembledEigenvalue>(std::move(dofs), std::move(inv_sqrt));
+  }
 
   // Contact: penalty per outer node as RingContact (penalty_scale · E · w · L / h).
   const RingMesh& r = m.topo.ring;
@@ -283,6 +316,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   // The caller also does the contact (~20 % of the element work on the thesis chain).
   m.split = static_cast<int>(0.45 * ne);
   m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
+  m.helper_viscous = Eigen::VectorXd::Zero(2 * nodes);
   if (two) m.fork = std::make_unique<ForkJoin>();
   m.contributions.reserve(256);
   m.pressure.reserve(256);
@@ -354,6 +388,8 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
           ContactContribution& c = m.contributions.emplace_back();
           c.nodes[0] = node;
           c.force(1) = k * gap * face.dir;
+          c.stiffness = k;
+          c.gap = gap;
           if (face.body_node >= 0) {
             c.count = 2;
             c.nodes[1] = face.body_node;
@@ -396,6 +432,8 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
       cf.deepest_ring = ss.deepest_master_ring;
     }
     contact_energy += ss.energy;
+    for (const auto& c : m.contributions)  // FNV-1a over the slave nodes, in the (fixed) search order
+      cf.active_set = (cf.active_set ^ static_cast<std::uint64_t>(c.nodes[0] + 1)) * 1099511628211ULL;
     m.surface_near_omega2 = ss.near_omega2;
     m.surface_near_node = ss.near_node;
     contact_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -415,12 +453,18 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   // Two partial sums, elements [0, split) and [split, ne), on one thread or two: the same
   // arithmetic either way, so the result does not depend on the threads.
   double helper_elastic = 0, helper_plastic = 0;
+  // Bulk viscosity: elements [0, split) into out.viscous_force, [split, ne) into
+  // helper_viscous, summed below (again the same order on one thread or two).
+  const bool viscous = m.bulk_scale > 0 && m.increment_time > 0;
+  if (viscous) out.viscous_force.setZero(dofs());
+  else out.viscous_force.resize(0);
+  double* const q_main = viscous ? out.viscous_force.data() : nullptr;
   if (m.fork) {
     if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
-    Impl::ElementJob job{&m, &u, want_tangent};
+    Impl::ElementJob job{&m, &u, want_tangent, viscous};
     m.fork->run(&Impl::ElementJob::run, &job, [&] {
       contact();
-      m.elements(0, m.split, u, want_tangent, true, out.force.data(), elastic, plastic);
+      m.elements(0, m.split, u, want_tangent, true, out.force.data(), q_main, elastic, plastic);
     });
     helper_elastic = job.elastic;
     helper_plastic = job.plastic;
@@ -431,10 +475,13 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   } else {
     contact();
     if (want_tangent) prepare_tangent();
-    m.elements(0, m.split, u, want_tangent, false, out.force.data(), elastic, plastic);
+    m.elements(0, m.split, u, want_tangent, false, out.force.data(), q_main, elastic, plastic);
     m.helper_force.setZero();
-    m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), helper_elastic, helper_plastic);
+    if (viscous) m.helper_viscous.setZero();
+    m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), viscous ? m.helper_viscous.data() : nullptr,
+               helper_elastic, helper_plastic);
   }
+  m.geometry_stale = false;
   out.force += m.helper_force;
   elastic += helper_elastic;
   plastic += helper_plastic;
@@ -445,11 +492,9 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     }
     if (want_tangent) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
   }
-  if (m.bulk_scale > 0 && m.increment_time > 0) {
-    m.bulk_viscous(u, out.viscous_force);
+  if (viscous) {
+    out.viscous_force += m.helper_viscous;
     out.force += out.viscous_force;
-  } else {
-    out.viscous_force.resize(0);
   }
   out.elastic_energy = elastic;
   out.plastic_work = plastic;
@@ -467,14 +512,9 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   std::swap(m.committed, m.trial);
   m.trial_fresh = false;
   m.u_n = u;
-  // The next increment is described on this configuration (kinematics.hpp).
-  const int ne = static_cast<int>(mesh_.elements.size());
-  if (m.fork) {
-    Impl::GeometryJob job{&m, &u};
-    m.fork->run(&Impl::GeometryJob::run, &job, [&] { m.regeometry(0, m.split, u); });
-  } else {
-    m.regeometry(0, ne, u);
-  }
+  // The next increment is described on this configuration (kinematics.hpp): the element
+  // geometry is re-derived on x_n in the next element pass (Impl::elements).
+  m.geometry_stale = true;
 }
 
 StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
@@ -487,8 +527,11 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
   // its last exact value; in between it is scaled with both. (The shortest edge alone
   // underestimates λ of a sheared element up to 3×; the reference thickness underestimates
   // it by λ3, up to 1.4× at a crushed hinge.)
-  std::vector<Eigen::Vector2d> x(mesh_.nodes.size());
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+  const std::size_t nn = mesh_.nodes.size();
+  if (m.x_bound.size() != nn) m.x_bound.resize(nn);
+  auto& x = m.x_bound;
+  for (std::size_t i = 0; i < nn; ++i) x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+  const bool assembled = input_.step_bound == StepBound::Assembled;
   double el = 0;
   int worst = -1;
   for (std::size_t e = 0; e < mesh_.elements.size(); ++e) {
@@ -501,32 +544,70 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
       ElementCoords xe;
       for (int a = 0; a < 8; ++a) xe.row(a) = x[mesh_.elements[e][a]].transpose();
       try {
-        m.omega2_exact[e] =
-            element_max_eigenvalue(xe, m.element_mass[e], input_.integration, input_.ring.width_m, m.material, states, ppe);
+        const ElementMatrix k =
+            element_elastic_stiffness(xe, input_.integration, input_.ring.width_m, m.material, states, ppe);
+        m.omega2_exact[e] = element_max_eigenvalue(k, m.element_mass[e]);
+        if (assembled) m.stiffness_exact[e] = k;
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("stable step: element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
       }
       m.shape_exact[e] = shape;
       m.thickness_exact[e] = thick;
     }
-    const double w2 = m.omega2_exact[e] * (shape / m.shape_exact[e]) * (thick / m.thickness_exact[e]);
+    const double scale = (shape / m.shape_exact[e]) * (thick / m.thickness_exact[e]);
+    if (assembled) m.stiffness_scale[e] = scale;
+    const double w2 = m.omega2_exact[e] * scale;
     if (w2 > el) { el = w2; worst = static_cast<int>(e); }
   }
+  m.element_omega2 = el;
+  m.element_limited_by = fmt::format("element {} (ring {})", worst + 1, mesh_.element_ring[worst] + 1);
+  return contact_stable_step(u);
+}
+
+// The element part of the last stable_step() (at most the driver's re-bound interval old)
+// with the contact springs of the last evaluate(): the re-bound after a change of the
+// contact activity, which on the thesis chain happens every few steps.
+StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
+  Impl& m = *impl_;
+  if (!(m.element_omega2 > 0)) throw std::logic_error("ChainModel::contact_stable_step before stable_step");
+  const double el = m.element_omega2;
   // Contact springs of the last evaluation within one element depth (active or about to
   // be): they load the same nodal masses, so their frequency² adds to the elements'.
   const bool surface_wins = m.surface_near_omega2 > m.face_near_omega2;
   const double contact = std::max(m.surface_near_omega2, m.face_near_omega2);
   const int contact_node = surface_wins ? m.surface_near_node : m.face_near_node;
+  double w2 = el + contact;
+  std::string limited_by = contact > el ? fmt::format("contact penalty, node {}", contact_node + 1) : m.element_limited_by;
+  if (input_.step_bound == StepBound::Assembled) {
+    // The assembled estimate (assembled_eigenvalue.hpp) of the scaled element matrices and
+    // the ACTIVE penalty springs (k G Gᵀ) together, instead of the sum of the largest element
+    // and the largest spring frequency²: θ·margin, never above that sum, and the sum itself
+    // when the iteration has not settled. A spring that closes changes the active set, so
+    // the driver re-bounds before the next step (run_dynamic). The first call starts from a
+    // random vector and iterates long; later calls follow the highest mode from the last
+    // iterate.
+    const bool first = m.assembled_calls++ == 0;
+    const AssembledEstimate est = m.assembled->estimate(m.stiffness_exact, m.stiffness_scale, first ? 200 : 3,
+                                                        first ? 2000 : 200, 1e-4, m.contributions);
+    m.assembled_iterations += est.iterations;
+    if (est.converged && est.lambda > 0) {
+      const double sharp = input_.step_bound_margin * est.lambda;
+      if (sharp < w2) {
+        limited_by = fmt::format("assembled power iteration ({} it., {:.3f} of the element + contact bound, {})",
+                                 est.iterations, std::sqrt(sharp / w2), limited_by);
+        w2 = sharp;
+      }
+    } else {
+      ++m.assembled_fallbacks;
+    }
+  }
   StableStep s;
-  s.step_s = 2.0 / std::sqrt(el + contact);
+  s.step_s = 2.0 / std::sqrt(w2);
   // Bulk viscosity damps the highest mode at ξ = b1: the central-difference limit becomes
   // Δt ≤ (2/ω_max)(√(1 + ξ²) − ξ) (ABAQUS Analysis Guide, explicit stability limit).
   const double xi = input_.bulk_viscosity;
   if (xi > 0) s.step_s *= std::sqrt(1 + xi * xi) - xi;
-  if (contact > el)
-    s.limited_by = fmt::format("contact penalty, node {}", contact_node + 1);
-  else
-    s.limited_by = fmt::format("element {} (ring {})", worst + 1, mesh_.element_ring[worst] + 1);
+  s.limited_by = limited_by;
   return s;
 }
 
@@ -560,6 +641,10 @@ std::vector<Cps8Fields> ChainModel::element_fields() const {
   for (std::size_t e = 0; e < mesh_.elements.size(); ++e)
     out.push_back(cps8_fields(&m.committed[e * m.points_per_element], m.points_per_element));
   return out;
+}
+
+ChainModel::StepBoundStatistics ChainModel::step_bound_statistics() const {
+  return {impl_->assembled_calls, impl_->assembled_iterations, impl_->assembled_fallbacks};
 }
 
 std::vector<double> ChainModel::max_peeq_per_ring() const {

@@ -17,7 +17,13 @@
 //  - stable_step(u) bounds the elements at u (exact 16×16 element eigenvalues with the
 //    committed thickness λ3 of their points, re-solved when an element's shape or λ3 has
 //    changed by 5 %) and the contact springs of the LAST evaluate() within one element depth
-//    of contact; call it between evaluate() calls, on the driver's thread;
+//    of contact; call it between evaluate() calls, on the driver's thread; contact_stable_step()
+//    keeps the element part of the last stable_step() and updates the contact springs; with
+//    ChainInput::step_bound = Assembled both estimate the assembled system's ω_max² (elements
+//    and active penalty springs) by warm-started power iteration, times a margin, never above
+//    the element + contact bound (fe/dynamics/assembled_eigenvalue.hpp);
+//  - commit(u) only marks the element geometry stale: it is re-derived on x_n element by
+//    element in the next evaluate()'s element pass (with the bulk viscosity, over the threads);
 //  - bulk viscosity (ChainInput::bulk_viscosity, explicit only): a pressure at each stress
 //    point proportional to its volumetric strain rate over the step the driver announces through
 //    set_increment_time(), with L_e = 2 c_d / ω_e from the element eigenvalue; the force is
@@ -28,6 +34,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -68,6 +75,9 @@ struct ChainContactForces {
   Surface deepest_into = Surface::None;
   int deepest_ring = -1;
   int active = 0;              // active contact points
+  // Hash of the sequence of active slave nodes: it changes when the SET of active contacts
+  // changes, also at the same count (the explicit driver re-bounds its step on it).
+  std::uint64_t active_set = 0;
   int pairs_checked = 0;       // ring pairs that passed the broad phase
   long candidate_pairs = 0;    // (node, surface piece) pairs in the contact candidate list
   long list_rebuilds = 0;      // candidate-list builds so far (ring_pair_contact.hpp)
@@ -92,6 +102,7 @@ class ChainModel final : public DynamicSystem {
   void commit(const Eigen::VectorXd& u) override;
   SparseSystem& tangent_system() override;
   StableStep stable_step(const Eigen::VectorXd& u) const override;
+  StableStep contact_stable_step(const Eigen::VectorXd& u) const override;
   // Bulk viscosity (ChainInput::bulk_viscosity > 0): the next evaluate() forms the element
   // volumetric strain rates over this step; 0 switches it off.
   void set_increment_time(double dt) override;
@@ -108,6 +119,10 @@ class ChainModel final : public DynamicSystem {
   double ring_extent(int ring, const Eigen::VectorXd& u) const;
   // Point-averaged Mises and PEEQ per element, committed states.
   std::vector<Cps8Fields> element_fields() const;
+  // StepBound::Assembled: stable_step() calls, power iterations, calls that fell back to
+  // the element bound (iteration not settled).
+  struct StepBoundStatistics { long calls = 0, iterations = 0, fallbacks = 0; };
+  StepBoundStatistics step_bound_statistics() const;
   // Largest committed point PEEQ of each ring.
   std::vector<double> max_peeq_per_ring() const;
 

@@ -425,6 +425,8 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
       }
       c.force.setZero();
       surface_force(poly, xy, k, best_f, best_gap, c.force.data());
+      c.stiffness = k;
+      c.gap = best_gap;
       if (want_tangent) {
         // Central differences of the exact local force (12×12 at most), symmetrised: the
         // force is the gradient of the penalty energy.

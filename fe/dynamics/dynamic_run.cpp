@@ -61,6 +61,10 @@ class DynamicRun {
       ExplicitDriver d(model_, o);
       loop(d, res);
       res.statistics.step_limited_by = d.limited_by();
+      res.statistics.full_bounds = d.full_bounds();
+      res.statistics.contact_bounds = d.contact_bounds();
+      res.statistics.bound_iterations = model_.step_bound_statistics().iterations;
+      res.statistics.bound_fallbacks = model_.step_bound_statistics().fallbacks;
     } else {
       HhtOptions o;
       o.alpha = solver_.alpha;
@@ -178,7 +182,7 @@ class DynamicRun {
     double next_frame = frame_interval;
     if (solver_.frames > 0) res.frames.push_back(frame(0, d.displacement()));
     double next_output = solver_.output_interval_s;
-    int active = model_.contact_forces().active;
+    std::uint64_t active = model_.contact_forces().active_set;
     auto last_progress = Clock::now();
     res.end_reason = "end_time";
     while (d.time() < end * (1 - 1e-12)) {
@@ -188,10 +192,11 @@ class DynamicRun {
         throw SolveFailure(e.what() + contact_context(d));
       }
       if constexpr (kExplicit) {
-        // The stable step drops when a contact closes (its penalty stiffness joins ω_max).
-        if (model_.contact_forces().active != active) {
-          active = model_.contact_forces().active;
-          d.request_stable_step();
+        // The stable step drops when a contact closes (its penalty stiffness joins ω_max):
+        // re-bound when the set of active contacts changed.
+        if (model_.contact_forces().active_set != active) {
+          active = model_.contact_forces().active_set;
+          d.request_contact_bound();
         }
       }
       const auto& u = d.displacement();

@@ -67,6 +67,9 @@ struct DynamicStatistics {
   double wall_time_s = 0, contact_time_s = 0;
   double min_step_s = 0, max_step_s = 0;
   std::string step_limited_by;   // explicit: what limited the stable step (last bound)
+  // Explicit: full stable-step bounds, contact-only re-bounds, and with the assembled bound
+  // its power iterations and the bounds that fell back to the element bound.
+  long full_bounds = 0, contact_bounds = 0, bound_iterations = 0, bound_fallbacks = 0;
 };
 
 struct DynamicResult {

@@ -59,6 +59,11 @@ class DynamicSystem {
   // the active contact stiffness over the node mass); the explicit driver multiplies the
   // step by its safety factor.
   virtual StableStep stable_step(const Eigen::VectorXd& u) const = 0;
+  // The re-bound after the contact activity changed, between two full stable_step() calls
+  // of the driver: a system may reuse the element part of its last stable_step() (at most
+  // the driver's re-bound interval old) and update only the contact springs. Default: the
+  // full bound.
+  virtual StableStep contact_stable_step(const Eigen::VectorXd& u) const { return stable_step(u); }
 
   // Explicit driver: the step Δt over which the next evaluate()'s increment u − u_n is taken,
   // so that a rate-dependent force (bulk viscosity, ε̇ = Δε/Δt) can be formed. 0 (the

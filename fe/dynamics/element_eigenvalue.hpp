@@ -25,5 +25,11 @@ namespace ringcrush::fe {
 double element_max_eigenvalue(const ElementCoords& x, const std::array<double, 8>& mass, Integration rule,
                               double width, const J2PlaneStress& material, const PointState* states = nullptr,
                               int points = 0);
+// The two halves of it: K_e, the elastic tangent on x with the λ3 of the states, and
+// λ_max(K_e, M_e) of a given K_e (the assembled estimate keeps the K_e).
+ElementMatrix element_elastic_stiffness(const ElementCoords& x, Integration rule, double width,
+                                        const J2PlaneStress& material, const PointState* states = nullptr,
+                                        int points = 0);
+double element_max_eigenvalue(const ElementMatrix& k, const std::array<double, 8>& mass);
 
 }  // namespace ringcrush::fe

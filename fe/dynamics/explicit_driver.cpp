@@ -52,15 +52,22 @@ void ExplicitDriver::fail(const std::string& what, int dof) const {
 }
 
 // Δt = safety · 2/ω_max (issue 4 item 5); the bound includes the active contact stiffness.
-void ExplicitDriver::bound_step() {
-  const StableStep s = sys_.stable_step(u_);
+// contact_only: the contact activity changed since the last full bound, whose element part
+// the system may reuse (DynamicSystem::contact_stable_step); the full-bound schedule
+// (stable_step_every) is kept.
+void ExplicitDriver::bound_step(bool contact_only) {
+  const StableStep s = contact_only ? sys_.contact_stable_step(u_) : sys_.stable_step(u_);
+  ++(contact_only ? contact_bounds_ : full_bounds_);
   if (!(s.step_s > 0) || !std::isfinite(s.step_s)) fail(fmt::format("stable step {} is not positive", s.step_s), -1);
   dt_stable_ = s.step_s;
   limited_by_ = s.limited_by;
   dt_target_ = std::min(opt_.safety * s.step_s, opt_.max_step_s);
   if (opt_.safety * s.step_s > opt_.max_step_s) limited_by_ = "max_step_s";
-  rebound_ = false;
-  since_bound_ = 0;
+  contact_rebound_ = false;
+  if (!contact_only) {
+    rebound_ = false;
+    since_bound_ = 0;
+  }
   // Log when the kind of limit changes (element / contact / cap) or the step moved by more
   // than 10 % since the last line: contact nodes come and go every few steps.
   const std::string kind = limited_by_.substr(0, limited_by_.find(' '));
@@ -81,7 +88,9 @@ void ExplicitDriver::step(double t_limit) {
       dt_stable_ = sys_.stable_step(u_).step_s;
     }
   } else if (rebound_ || since_bound_ >= opt_.stable_step_every) {
-    bound_step();
+    bound_step(false);
+  } else if (contact_rebound_) {
+    bound_step(true);
   }
   dt_ = std::min(dt_target_, t_limit - t_);
   const Eigen::VectorXd& m = sys_.lumped_mass();

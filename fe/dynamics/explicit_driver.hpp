@@ -8,8 +8,9 @@
 // energies; with a variable Δt it is the usual Belytschko form). Conditionally stable:
 // Δt ≤ 2/ω_max. The step is Δt = safety · stable_step(u), where stable_step bounds ω_max from
 // the element eigenvalues and the active contact stiffness; it is re-bounded every
-// `stable_step_every` steps and whenever the caller says the contact activity changed
-// (request_stable_step()). What limited it is logged.
+// `stable_step_every` steps (and on request_stable_step()), and its contact part whenever
+// the caller says the contact activity changed (request_contact_bound(): contacts come and
+// go every few steps, the element part changes slowly). What limited it is logged.
 //
 // A rate-dependent force of the system (bulk viscosity, SystemEvaluation::viscous_force) is
 // formed from the step's increment over Δt (set_increment_time before each evaluate), i.e.
@@ -50,8 +51,11 @@ class ExplicitDriver {
 
   // One step, shortened so as not to pass t_limit.
   void step(double t_limit = std::numeric_limits<double>::infinity());
-  // Re-bound the stable step before the next step (e.g. the set of active contacts changed).
+  // Re-bound the stable step before the next step.
   void request_stable_step() { rebound_ = true; }
+  // The set of active contacts changed: re-bound the contact springs before the next step
+  // (DynamicSystem::contact_stable_step; the element part is re-bounded on its schedule).
+  void request_contact_bound() { contact_rebound_ = true; }
 
   double time() const { return t_; }
   double step_size() const { return dt_; }           // last step taken
@@ -62,6 +66,8 @@ class ExplicitDriver {
   double max_step() const { return max_dt_; }
   double contact_time() const { return contact_time_; }
   long evaluations() const { return evaluations_; }
+  long full_bounds() const { return full_bounds_; }        // stable_step() calls
+  long contact_bounds() const { return contact_bounds_; }  // contact_stable_step() calls
 
   const Eigen::VectorXd& displacement() const { return u_; }
   const Eigen::VectorXd& velocity() const { return v_; }
@@ -74,7 +80,7 @@ class ExplicitDriver {
   std::function<std::string(int)> describe_dof;
 
  private:
-  void bound_step();
+  void bound_step(bool contact_only);
   void fail(const std::string& what, int dof) const;
 
   DynamicSystem& sys_;
@@ -86,7 +92,8 @@ class ExplicitDriver {
   double t_ = 0, dt_ = 0, dt_stable_ = 0, dt_target_ = 0;
   std::string limited_by_, logged_kind_;
   double logged_dt_ = 0;
-  bool rebound_ = true;
+  bool rebound_ = true, contact_rebound_ = false;
+  long full_bounds_ = 0, contact_bounds_ = 0;
   long steps_ = 0, since_bound_ = 0, evaluations_ = 0;
   double min_dt_ = 0, max_dt_ = 0, contact_time_ = 0;
 };

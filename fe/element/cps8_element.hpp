@@ -57,11 +57,21 @@ void cps8_evaluate(const Cps8Geometry& geo, const double* du, const PointState* 
                    PointState* trial, const J2PlaneStress& material, bool want_tangent,
                    Cps8Output& out);
 
+// Bulk viscosity riding along the force-only path (explicit driver; bulk_viscosity.hpp):
+// q_i = coefficient · tr ΔE_i / dt at every stress point, from the deformation gradient the
+// element has just formed, its nodal force Σ_i q_i w_i f_i ∇N_a added to *force — the same
+// arithmetic as add_bulk_viscous_force(), without forming f and ΔE a second time.
+struct BulkViscousLoad {
+  double coefficient = 0;  // b1 ρ c_d L_e (Pa·s)
+  double dt = 0;           // the step of the increment (s, > 0)
+  ElementVector* force = nullptr;
+};
+
 // Force-only path of cps8_evaluate (want_tangent = false dispatches here; cps8_force.cpp):
 // the same force, energies and trial states to round-off, without B or the tangent.
-// out.tangent is left untouched.
+// out.tangent is left untouched. viscous (optional): the bulk-viscous force of the increment.
 void cps8_force(const Cps8Geometry& geo, const double* du, const PointState* committed, PointState* trial,
-                const J2PlaneStress& material, Cps8Output& out);
+                const J2PlaneStress& material, Cps8Output& out, const BulkViscousLoad* viscous = nullptr);
 
 // The stress a point contributes through its own ∂N/∂X (both element paths): S itself, or
 // for the selective rule S − p I, p = ½(S11 + S22), with w p M_r added to the weight q_r of

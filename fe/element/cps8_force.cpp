@@ -45,7 +45,7 @@ inline void store_trial(const Mat2& f, const J2Update& up, const PointState& c, 
 }  // namespace
 
 void cps8_force(const Cps8Geometry& geo, const double* u, const PointState* committed, PointState* trial,
-                const J2PlaneStress& material, Cps8Output& out) {
+                const J2PlaneStress& material, Cps8Output& out, const BulkViscousLoad* viscous) {
   out.force.setZero();
   out.elastic_energy = 0;
   out.plastic_work = 0;
@@ -65,6 +65,11 @@ void cps8_force(const Cps8Geometry& geo, const double* u, const PointState* comm
     const ShapeGrad& d = geo.dndx[i];
     const Mat2 f = deformation_gradient(d, u);
     Eigen::Vector3d e = green_lagrange(f);
+    if (viscous) {
+      // bulk_viscosity.hpp: the point's own (not the Barlow-averaged) volumetric rate.
+      const double q = viscous->coefficient * (e(0) + e(1)) / viscous->dt;
+      add_nodal_force(d, f, q * geo.weight[i], *viscous->force);
+    }
     if (selective) {
       double tr_bar = 0;
       for (int r = 0; r < 4; ++r) tr_bar += geo.barlow(i, r) * tr_r[r];
