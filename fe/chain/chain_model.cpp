@@ -12,6 +12,7 @@
 
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/chain/geometry_update.hpp"
+#include "fe/contact/self_contact_taper.hpp"
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
@@ -301,6 +302,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     for (int i = 0; i < input.rings; ++i)
       for (auto& p : inner_wall_passes(r, m.topo.ring_node[i], i, k_scale, input.ring.width_m, input.contact.smoothing,
                                        input.contact.self_contact_min_separation_rad,
+                                       kSelfContactTaperBandRad,
                                        input.contact.self_contact_two_pass))
         passes.push_back(std::move(p));
   m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth);

@@ -1,5 +1,7 @@
 #include "fe/contact/ring_pair_contact.hpp"
 
+#include "fe/contact/self_contact_taper.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -207,7 +209,7 @@ ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, 
 
 std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
                                            double k_scale, double width, double smoothing,
-                                           double min_separation, bool two_pass) {
+                                           double min_separation, double taper_band, bool two_pass) {
   // Lower (y < 0) and upper (y > 0) halves of the inner wall, reference configuration, as
   // RingContact does for one ring.
   auto lower = [](double phi) { return -std::cos(phi) < -1e-12; };
@@ -218,6 +220,7 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
     p.self = true;
     p.slave_ring = p.master_ring = ring_index;
     p.min_separation = min_separation;
+    p.taper_band = taper_band;
     for (std::size_t i = 0; i < ring.inner_nodes.size(); ++i) {
       const int node = ring.inner_nodes[i];
       if (!slave_pred(ring.node_angle[node])) continue;
@@ -267,6 +270,7 @@ SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
     : passes_(std::move(passes)), depth_(depth), skin_(0.25 * depth) {
   if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
   for (const auto& p : passes_) {
+    if (p.self) ArcTaper(p.min_separation, p.taper_band);  // throws on a bad exclusion or band
     for (int s : p.slaves) tracked_.push_back(s);
     for (const auto& q : p.pieces)
       for (int a = 0; a < q.count; ++a) tracked_.push_back(q.nodes[a]);
@@ -335,8 +339,10 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
         const auto& b = box[q];
         if (xs.x() < b[0] || xs.x() > b[1] || xs.y() < b[2] || xs.y() > b[3]) continue;
         if (p.self) {
-          bool joined = false;
-          for (int a = 0; a < p.pieces[q].count && !joined; ++a)
+          // A piece wholly inside the exclusion is joined to the slave by the wall; one that
+          // straddles its edge stays a candidate, the taper weighs its closest point.
+          bool joined = true;
+          for (int a = 0; a < p.pieces[q].count && joined; ++a)
             joined = wrapped_angle(p.slave_angle[s], p.piece_angle[q][a]) < p.min_separation;
           if (joined) continue;
         }
@@ -361,6 +367,7 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
     const auto& start = start_[pi];
+    const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
     for (std::size_t s = 0; s < p.slaves.size(); ++s) {
       if (start[s] == start[s + 1]) continue;
       const int node = p.slaves[s];
@@ -381,6 +388,11 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
         for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
         double f = piece.lo - 1.0, gap = 0;
         if (!surface_gap(poly_[pi][q], xy, p.symmetric_end[q], true, f, gap)) return;
+        // Self contact: a closest point inside the exclusion is the slave's own wall, not a
+        // partner (its weight is zero, so dropping it is continuous).
+        if (p.self && taper.weight(arc_to_closest_point(poly_[pi][q], p.piece_angle[static_cast<std::size_t>(q)],
+                                                        p.slave_angle[s], f, nullptr)) == 0)
+          return;
         // The closest owned piece decides (a node behind the wall of another piece is not
         // "penetrating" it).
         if (std::abs(gap) < best_abs) { best = q; best_abs = std::abs(gap); best_f = f; best_gap = gap; }
@@ -424,7 +436,15 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
         xy[3 + 2 * a] = x[piece.nodes[a]].y();
       }
       c.force.setZero();
-      surface_force(poly, xy, k, best_f, best_gap, c.force.data());
+      const std::array<double, 5>* angles = p.self ? &p.piece_angle[static_cast<std::size_t>(best)] : nullptr;
+      // The local force (self contact: tapered at the exclusion's edge; weight 1 elsewhere).
+      auto local_force = [&](double at, double g, double* force) -> double {
+        if (angles) return tapered_self_force(poly, xy, k, at, g, taper, p.slave_angle[s], *angles, force);
+        surface_force(poly, xy, k, at, g, force);
+        return 1.0;
+      };
+      const double weight = local_force(best_f, best_gap, c.force.data());
+      // The full penalty k, not k·weight: the stable-step bound must not underrate the spring.
       c.stiffness = k;
       c.gap = best_gap;
       if (want_tangent) {
@@ -439,20 +459,20 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
           double ff = best_f, gg = 0;
           xy[j] = keep + h;
           surface_gap(poly, xy, 0, false, ff, gg);
-          surface_force(poly, xy, k, ff, gg, fp);
+          local_force(ff, gg, fp);
           ff = best_f;
           xy[j] = keep - h;
           surface_gap(poly, xy, 0, false, ff, gg);
-          surface_force(poly, xy, k, ff, gg, fm);
+          local_force(ff, gg, fm);
           xy[j] = keep;
           for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * h);
         }
         const Eigen::Matrix<double, 12, 12> t = c.tangent;
         c.tangent = 0.5 * (t + t.transpose());
       }
-      const double fn = -k * best_gap;
+      const double fn = -weight * k * best_gap;
       (p.self ? st.self_force : st.ring_ring_force) += fn;
-      st.energy += 0.5 * k * best_gap * best_gap;
+      st.energy += 0.5 * weight * k * best_gap * best_gap;
       if (-best_gap > st.max_penetration) {
         st.max_penetration = -best_gap;
         st.deepest_node = node;

@@ -44,11 +44,14 @@ struct ContactPass {
   // half ring. There the surface continues as its mirror image, so a projection onto that
   // end is the closest point of the whole surface and is accepted.
   std::vector<unsigned char> symmetric_end;
-  // Self contact: reference angle of each slave and piece node; pairs closer than
-  // min_separation along the wall are joined by the wall and never paired.
+  // Self contact: reference angle of each slave and piece node; points closer than
+  // min_separation along the wall are joined by the wall and never paired, and the penalty
+  // ramps up over the next taper_band of arc (self_contact_taper.hpp: no force jump at the
+  // exclusion's edge).
   std::vector<double> slave_angle;
   std::vector<std::array<double, 5>> piece_angle;
   double min_separation = 0;
+  double taper_band = 0;
 };
 
 // Passes of one ring's outer surface (ring `slave`) against another's (ring `master`).
@@ -57,9 +60,11 @@ ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, 
                        const std::vector<int>& master_map, int master, double k_scale, double width,
                        double smoothing);
 // The two inner-wall passes of one ring (as RingContact: lower half against upper and back).
+// min_separation: ContactInput::self_contact_min_separation_rad; taper_band: the arc over
+// which the penalty ramps up beyond it (kSelfContactTaperBandRad, self_contact_taper.hpp).
 std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
                                            double k_scale, double width, double smoothing,
-                                           double min_separation, bool two_pass);
+                                           double min_separation, double taper_band, bool two_pass);
 
 // A piece's shape functions as cubic polynomials in f, c_k(f) = Σ_p a[k][p] f^p (exact:
 // quadratic edges and Hermite junctions are at most cubic). Precomputed once, so the closest-

@@ -17,6 +17,7 @@
 
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
+#include "fe/contact/self_contact_taper.hpp"
 
 using namespace ringcrush::fe;
 
@@ -36,7 +37,8 @@ FoldResult fold_contact(double min_separation, double s, double d) {
   const ChainTopology t = make_chain_topology(in);
   const double k_scale = in.material.youngs_modulus_pa * in.ring.width_m / t.ring.element_depth;
   const std::vector<ContactPass> passes = inner_wall_passes(t.ring, t.ring_node[0], 0, k_scale, in.ring.width_m,
-                                                            in.contact.smoothing, min_separation, true);
+                                                            in.contact.smoothing, min_separation,
+                                                            kSelfContactTaperBandRad, true);
   std::vector<Eigen::Vector2d> x = t.mesh.nodes;
   for (auto& p : x) {
     p.y() *= s;

@@ -40,7 +40,7 @@ ChainPasses setup(const ChainInput& in, bool self) {
       if (i != j) s.passes.push_back(outer_pass(s.t.ring, s.t.ring_node[i], i, s.t.ring_node[j], j, s.k_scale, 0.0125, 0.25));
   if (self)
     for (int i = 0; i < in.rings; ++i)
-      for (auto& p : inner_wall_passes(s.t.ring, s.t.ring_node[i], i, s.k_scale, 0.0125, 0.25, std::numbers::pi / 3, true))
+      for (auto& p : inner_wall_passes(s.t.ring, s.t.ring_node[i], i, s.k_scale, 0.0125, 0.25, std::numbers::pi / 3, 0.0, true))
         s.passes.push_back(p);
   return s;
 }
