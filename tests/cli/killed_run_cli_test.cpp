@@ -22,9 +22,13 @@ const std::string exe = RINGCRUSH_EXE;
 // Staging directories of `target` (".NAME.partial-PID") in its parent.
 int staging_dirs(const fs::path& target, bool* with_summary) {
   int n = 0;
+  // Appended, not `"." + ...`: GCC 12's -Wrestrict false positive.
+  std::string prefix = ".";
+  prefix += target.filename().string();
+  prefix += ".partial-";
   for (const auto& e : fs::directory_iterator(target.parent_path())) {
     const std::string name = e.path().filename().string();
-    if (name.rfind("." + target.filename().string() + ".partial-", 0) == 0) {
+    if (name.rfind(prefix, 0) == 0) {
       ++n;
       if (fs::exists(e.path() / "summary.json")) *with_summary = true;
     }

@@ -49,7 +49,12 @@ INSTANTIATE_TEST_SUITE_P(Levels, WorkPrecision,
                          ::testing::Combine(::testing::Values(0, 1),
                                             ::testing::Values(HybridIntegrator::Ida, HybridIntegrator::Odeint)),
                          [](const auto& param_info) {
-                           return "L" + std::to_string(std::get<0>(param_info.param)) + "_" + to_string(std::get<1>(param_info.param));
+                           // Appended, not `"L" + ...`: GCC 12's -Wrestrict false positive.
+                           std::string name = "L";
+                           name += std::to_string(std::get<0>(param_info.param));
+                           name += '_';
+                           name += to_string(std::get<1>(param_info.param));
+                           return name;
                          });
 
 }  // namespace
