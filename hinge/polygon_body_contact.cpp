@@ -62,12 +62,7 @@ void PolygonChain::plate_contact(int r, int body, bool above, double t, const do
     const bool touching = pen > 0.0;
     const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
     const double w = node_weight(j);
-    double diss = 0.0;
-    const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
-    if (touching) {
-      tally.dissipation += w * diss;
-      tally.contact_energy += w * 0.5 * k_n_ * pen * pen;
-    }
+    const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
     const double fy = above ? -f : f;  // on the node
     phi[o + 3] += fy;
     const bool body_free = body >= 0 && !(body == 0 && in_.driven_impactor);

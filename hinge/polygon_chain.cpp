@@ -219,6 +219,14 @@ double PolygonChain::contact_force(double penetration, double rate, double& diss
 
 // Partials of the contact dissipation rate (f − k p) ṗ: k p χ ṗ² while f > 0, −k p ṗ where the
 // clip at zero force acts.
+double PolygonChain::contact_load(double w, double penetration, double rate, Tally& tally) const {
+  double diss = 0.0;
+  const double f = w * contact_force(penetration, rate, diss);
+  tally.dissipation += w * diss;
+  tally.contact_energy += w * 0.5 * k_n_ * penetration * penetration;
+  return f;
+}
+
 void PolygonChain::diss_partials(double penetration, double rate, double& d_pen, double& d_rate) const {
   if (1.0 + chi_ * rate > 0.0) {
     d_pen = k_n_ * chi_ * rate * rate;

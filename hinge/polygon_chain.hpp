@@ -221,6 +221,9 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double node_weight(int j) const { return (half_ && (j == 0 || j == n_ind_ - 1)) ? 0.5 : 1.0; }
   void expand_ring(int ring, const double* y);
   double contact_force(double penetration, double rate, double& dissipation) const;
+  // The normal force of a node weighted w (half-model axis nodes ½), zero while apart; books
+  // its damping power and penalty energy in the tally.
+  double contact_load(double w, double penetration, double rate, Tally& tally) const;
   // Jacobian sinks of analytic_jacobian (entries of −∂φ/∂y; rows of axis-node x forces
   // dropped). ring_block adds a 2×2 block ∂F_i/∂(p or v)_m (slot 0 or 2) of full-ring
   // nodes, ring_force_entry a column of ∂F_i, ring_state_entry a row's entries on the x, y

@@ -100,12 +100,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const double vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
     const double w = node_weight(j);
-    double diss = 0.0;
-    const double f = touching ? w * contact_force(pen, rate, diss) : 0.0;
-    if (touching) {
-      tally.dissipation += w * diss;
-      tally.contact_energy += w * 0.5 * k_n_ * pen * pen;
-    }
+    const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
     phi[os + 2] += f * nx;
     phi[os + 3] += f * ny;
     phi[oa + 2] -= (1 - s) * f * nx;

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "fe/chain/chain_model.hpp"
+#include "chain_omega_max.hpp"
 #include "fe/chain/geometry_update.hpp"
 
 using namespace ringcrush::fe;
@@ -256,16 +257,7 @@ TEST(ChainModel, InitialVelocityExtentAndImpactorForce) {
 }
 
 namespace {
-// Largest ω of K v = ω² M v over the free dofs (dense).
-double omega_max(ChainModel& model) {
-  SparseSystem& sys = model.tangent_system();
-  const Eigen::MatrixXd k = Eigen::MatrixXd(sys.matrix());
-  Eigen::VectorXd s(sys.free_dofs());
-  for (int i = 0; i < sys.free_dofs(); ++i) s(i) = 1 / std::sqrt(model.lumped_mass()(sys.free_to_dof()[i]));
-  const Eigen::MatrixXd a = s.asDiagonal() * k * s.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
-  return std::sqrt(eig.eigenvalues().maxCoeff());
-}
+double omega_max(ChainModel& model) { return test::chain_omega_max(model); }
 }  // namespace
 
 TEST(ChainModel, StableStepBoundsTheHighestFrequency) {
