@@ -62,8 +62,12 @@ std::vector<std::string> explain_fe(const Scene& s) {
                           rule_name(s.fe.integration), half ? "half" : "full"));
   if (solver.scheme == fe::DynamicScheme::Explicit)
     e.push_back(fmt::format("explicit central difference: HRZ lumped mass, no tangent and no factorisation; the step "
-                            "is {:g} x the element/contact stability bound (fe.solver = \"explicit\")",
-                            solver.safety));
+                            "is {:g} x {} (fe.solver = \"explicit\", fe.step_bound = \"{}\")",
+                            solver.safety,
+                            chain.step_bound == fe::StepBound::Assembled
+                                ? "the assembled power-iteration estimate of omega_max"
+                                : "the element/contact stability bound",
+                            chain.step_bound == fe::StepBound::Assembled ? "assembled" : "element"));
   else
     e.push_back(fmt::format("implicit HHT-alpha (alpha = {:g}): lumped mass, tangent and sparse LDLT per Newton "
                             "iteration, half-step residual control with HAFTOL {:g} N (fe.solver = \"hht\")",

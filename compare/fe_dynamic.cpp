@@ -113,6 +113,7 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   // Bulk viscosity acts in the explicit driver only (the ChainModel forms it from the step
   // the explicit driver announces); HHT ignores it.
   in.bulk_viscosity = s.fe.bulk_viscosity;
+  in.step_bound = s.fe.step_bound == ExplicitStepBound::Assembled ? fe::StepBound::Assembled : fe::StepBound::Element;
   fe::validate(in);
   return in;
 }

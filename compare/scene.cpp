@@ -362,6 +362,9 @@ Scene parse_scene(const std::string& text, const std::string& file) {
     f.explicit_safety = r.number("explicit_safety", f.explicit_safety);
     require(f.explicit_safety > 0 && f.explicit_safety <= 1, r, "explicit_safety",
             "must lie in (0, 1]");
+    f.step_bound = r.choice<ExplicitStepBound>(
+        "step_bound", {{"element", ExplicitStepBound::Element}, {"assembled", ExplicitStepBound::Assembled}},
+        f.step_bound);
     f.bulk_viscosity = r.number("bulk_viscosity", f.bulk_viscosity);
     require(f.bulk_viscosity >= 0 && f.bulk_viscosity < 1, r, "bulk_viscosity", "must lie in [0, 1)");
     f.energy_error_limit = r.number("energy_error_limit", f.energy_error_limit);

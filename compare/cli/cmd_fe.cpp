@@ -117,7 +117,9 @@ Scene scene_with_overrides(const FeOptions& o) {
 void run_fe_dynamic(const Scene& s, const FeOptions& o) {
   fe::ChainInput chain = fe_chain_input(s);
   chain.threads = o.threads;
+  // --step-bound overrides the scene's [fe] step_bound.
   if (o.step_bound == "assembled") chain.step_bound = fe::StepBound::Assembled;
+  if (o.step_bound == "element") chain.step_bound = fe::StepBound::Element;
   const fe::DynamicSolverInput solver = fe_dynamic_solver_input(s);
   if (!o.quiet) {
     echo_dynamic(s, chain, solver);

@@ -63,9 +63,12 @@ void echo_dynamic(const Scene& s, const fe::ChainInput& c, const fe::DynamicSolv
                "PTOL {:g} N, {} iterations; step initial {:.3g} s, bounds [{:.3g}, {:.3g}] s\n",
                d.alpha, d.haftol_n, d.ptol_n, d.max_iterations, d.initial_step_s, d.min_step_s, d.max_step_s);
   else
-    fmt::print("  integrator: explicit central difference, lumped (HRZ) mass; dt = {:g} x 2/omega_max, "
+    fmt::print("  integrator: explicit central difference, lumped (HRZ) mass; dt = {:g} x 2/omega_max ({}), "
                "re-bounded every {} steps; linear bulk viscosity b1 = {:g}\n",
-               d.safety, d.stable_step_every, c.bulk_viscosity);
+               d.safety,
+               c.step_bound == fe::StepBound::Assembled ? "assembled power-iteration estimate"
+                                                        : "element + contact bound",
+               d.stable_step_every, c.bulk_viscosity);
   fmt::print("  end: at rest (KE < {:g} of KE0 and the impactor stopped){} or at {:g} ms; energy error limit {:g}; "
              "{} frames\n",
              d.rest_kinetic_fraction, d.stop_at_rest ? "" : " [disabled]", 1e3 * d.end_time_s,

@@ -211,6 +211,7 @@ TEST(FeDynamicInput, ThesisSceneMapsEveryValue) {
   EXPECT_DOUBLE_EQ(d.energy_error_limit, 0.05);
   EXPECT_DOUBLE_EQ(d.safety, 0.8);
   EXPECT_DOUBLE_EQ(c.bulk_viscosity, 0.06);  // ABAQUS/Explicit's default b1
+  EXPECT_EQ(c.step_bound, fe::StepBound::Element);  // the bound, not the estimate, by default
   EXPECT_GE(d.max_step_s, d.initial_step_s);
   EXPECT_LT(d.min_step_s, d.initial_step_s);
 }
@@ -219,7 +220,7 @@ TEST(FeDynamicInput, PlatesFreeEndAndSolverKeys) {
   const Scene s = scene_variant("test30_plates", {{"type = \"fixed\"", "type = \"free\""},
                                                   {"integration = \"reduced\"", "integration = \"full\""},
                                                   {"\\[fe\\]", "[fe]\nexplicit_safety = 0.6\nenergy_error_limit = 0.02\nbulk_viscosity = 0.1\n"
-                                                               "contact_smoothing = 0.1\ncontact_penalty_scale = 3.0"},
+                                                               "step_bound = \"assembled\"\ncontact_smoothing = 0.1\ncontact_penalty_scale = 3.0"},
                                                   {"fields = true", "fields = false"},
                                                   {"stop_at_rest = true", "stop_at_rest = false"}});
   const fe::ChainInput c = fe_chain_input(s);
@@ -239,6 +240,7 @@ TEST(FeDynamicInput, PlatesFreeEndAndSolverKeys) {
   EXPECT_DOUBLE_EQ(d.safety, 0.6);
   EXPECT_DOUBLE_EQ(d.energy_error_limit, 0.02);
   EXPECT_DOUBLE_EQ(c.bulk_viscosity, 0.1);
+  EXPECT_EQ(c.step_bound, fe::StepBound::Assembled);
   EXPECT_FALSE(d.stop_at_rest);
   EXPECT_EQ(d.frames, 0);  // outputs.fields = false
   const Scene free = load_scene(scene_path("test28_free"));
@@ -265,6 +267,14 @@ TEST(FeDynamicInput, RefusesWhatTheDynamicFeDoesNotCover) {
     } catch (const SceneError& e) {
       EXPECT_NE(std::string(e.what()).find("bulk_viscosity"), std::string::npos) << e.what();
     }
+  }
+  // A step bound that is not one of the two: a named scene error listing them.
+  try {
+    scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\nstep_bound = \"exact\""}});
+    ADD_FAILURE() << "step_bound = \"exact\" accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("step_bound"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("assembled"), std::string::npos) << e.what();
   }
   const Scene strain = scene_variant("thesis_dynamic", {{"plane_stress", "plane_strain"}});
   EXPECT_THROW(fe_chain_input(strain), std::invalid_argument);
