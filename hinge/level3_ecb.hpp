@@ -26,8 +26,11 @@
 // contact edge the shear-free E sits on (level3_travelling_e.hpp: dP/dθ_E > 0 on every state
 // tried, E pinned to the cap edge) is carried with the cap and does not sweep new material;
 // a travelling E would need the cap to deform, which no hinge of this mechanism allows.
-// So θ_E is chosen once, when the ring is reinforced (level3_mechanism.cpp), and the trace
-// is one degree of freedom.
+// So θ_E is chosen once, when the ring is reinforced (level3_mechanism.cpp: the scene's E,
+// moved out to the top flat's edge φ if it lies on the flat), and the trace is one degree of
+// freedom. Second-order overlaps it leaves (rigid-plastic kinematics, no contact law): the
+// arc beyond E rises above the held cap by ≈ Rβ²/2 and the arc beside B′ dips below the flat
+// by ≈ Rq²/2 (0.79 mm each at the limit of Test 30's ring from φ = ψ = 60.6°, t = 1.6 mm).
 #pragma once
 
 #include <array>

@@ -289,10 +289,16 @@ class Level3Chain final : public HybridSystem {
   double ecb_load(const double* y, int i) const {
     if (ecb_started_[i]) return ecb(i).load_at(y[4 + kM * i + kE]);
     const double psi = bottom_psi(y, i);
-    const auto s = level3_ecb_pose(r_, level3_ecb_points(r_, psi0_[i], psi, theta_e_[i]), psi, 0.0);
+    const auto s = level3_ecb_pose(r_, level3_ecb_points(r_, psi0_[i], psi, ecb_theta_e(i)), psi, 0.0);
     return s.valid ? s.load : std::numeric_limits<double>::infinity();  // no mechanism: never selected
   }
   const EcbMechanism& ecb(int i) const { return ecb_[static_cast<std::size_t>(i)]; }
+  // E of ring i's E–C–B: the chosen θ_E, but not inside the top flat (material angles below
+  // the uniform angle φ = psi0_): that flat is pressed flat-on-flat by the ring above over its
+  // length, and an E inside it would lift its outer part into that ring at first order in β
+  // (1.0 mm at the E–C–B limit for E = 45° on Test 30's φ = 60.6°); from the flat's edge the
+  // arc beyond E rises only by ≈ Rβ²/2, like the arc beside B′ dips (level3_ecb.hpp).
+  double ecb_theta_e(int i) const { return std::max(theta_e_[i], psi0_[i]); }
   double slope(const double* y, int j) const {
     const int i = j / kM;
     switch (j % kM) {
@@ -479,11 +485,11 @@ class Level3Chain final : public HybridSystem {
   void switch_to_ecb(double t, const std::vector<double>& y, int i) {
     const double psi = bottom_psi(y.data(), i), pb = load(y.data(), kM * i + kL);
     const double pe = load(y.data(), kM * i + kE);
-    ecb_[static_cast<std::size_t>(i)] = level3_ecb_mechanism(r_, psi0_[i], psi, theta_e_[i]);
+    ecb_[static_cast<std::size_t>(i)] = level3_ecb_mechanism(r_, psi0_[i], psi, ecb_theta_e(i));
     ecb_started_[i] = true;
     events_.push_back({t, "mode_selected", i,
                        fmt::format("E-C-B under ring {} (E at {:.1f} deg, load {:.1f} N < bottom {:.1f} N, psi = {:.1f} deg)", i,
-                                   theta_e_[i] * 180.0 / pi, pe, pb, psi * 180.0 / pi)});
+                                   ecb_theta_e(i) * 180.0 / pi, pe, pb, psi * 180.0 / pi)});
   }
 
   // The shear-free E of ring i + 1 just reinforced by ring i's wrap: the least-load E–C–B

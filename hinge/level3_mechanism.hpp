@@ -118,7 +118,8 @@ std::string to_string(Level3HingeF);
 // Level3Input::theta_e, or ShearFree: the least-load E–C–B hinge on the current shape beyond
 // the cap held by the wrapped ring, re-found at every output state. E is reported (hinge map,
 // E–C–B load against the flowing bottom mechanism); the chain's bottom mechanism does not
-// turn E.
+// turn E. With Level3RingUnder::LeastLoad the E–C–B flows (hinge/level3_ecb.hpp) with E
+// placed by this option when the ring is reinforced, moved out to the top flat's edge if on it.
 enum class Level3HingeE { Fixed, ShearFree };
 std::string to_string(Level3HingeE);
 
