@@ -74,6 +74,15 @@ TEST(Level3Ecb, OnsetMatchesTheClosedFormAndTheDrawnShapeRate) {
   const auto e = level3_e_rate(shape, kRing.plastic_moment_nm, th, 1.0 + kRing.hardening_k * psi);
   EXPECT_NEAR(level3_ecb_onset_load(kRing, phi, psi, th) / e.load, 1.0, 1e-3);
   EXPECT_THROW(level3_ecb_onset_load(kRing, phi, psi, 1.6), std::invalid_argument);
+  // From the top flat's edge of a DeRuntz–Hodge state (θ_E = φ = ψ) without hardening the
+  // E–C–B starts at the bottom mechanism's load P0/cos ψ exactly (the two are the same
+  // instantaneous motion of a symmetric ring); once the bottom has flowed on (ψ > φ) E–C–B
+  // is the cheaper by geometry alone.
+  for (double a : {0.2, 0.6, 1.0}) {
+    const double bottom = kRigidPlastic.collapse_load() / std::cos(a);
+    EXPECT_NEAR(level3_ecb_onset_load(kRigidPlastic, a, a, a) / bottom, 1.0, 1e-12) << a;
+    EXPECT_LT(level3_ecb_onset_load(kRigidPlastic, a, a + 0.15, a), kRigidPlastic.collapse_load() / std::cos(a + 0.15)) << a;
+  }
   EXPECT_THROW(level3_ecb_mechanism(kRing, -0.1, psi, th), std::invalid_argument);
 }
 
@@ -170,6 +179,8 @@ TEST(Level3Ecb, ChainPicksTheCheaperMechanismOfTheRingUnderneath) {
   const auto cheap = simulate_level3(in, options());
   ASSERT_TRUE(cheap.rings[0].wrap_started);
   EXPECT_EQ(cheap.rings[1].mode, Level3Mode::Ecb);
+  // The held cap's edge lies on ring 2's top flat: E moved out to the flat's edge φ.
+  EXPECT_NEAR(cheap.rings[1].ecb_theta_e, cheap.rings[1].uniform_angle, 1e-12);
   EXPECT_TRUE(has_switch(cheap, 1));
   bool turned = false;
   for (const auto& h : cheap.rings[1].hinges)
