@@ -13,6 +13,10 @@
 //   Bottom   the ring underneath a wrapping ring (hinges E, C, B, none at A): the cap A–E
 //            is held by the wrapped ring, the lower quadrant turns about C and flattens at
 //            B; δ = R (sin ψ − sin ψ0), P = P0 (1 + kψ)/cos ψ from the current ψ0.
+//   Ecb      the ring underneath turning E (hinges E, C, B′; hinge/level3_ecb.hpp): cap A–E
+//            held, E–C turning about E, C–B′ about C, B′ on its line; traced with finite
+//            rotations and tabulated like the wrap. Selected against Bottom by least load
+//            (Level3RingUnder::LeastLoad), one-way.
 //
 // The chain (simulate_level3): rings in series between the impactor (mass M) and a fixed
 // target, ring inertia neglected (a massless, quasi-static rigid-plastic chain, so the
@@ -26,7 +30,8 @@
 // load), or travelling by the shear-free condition (Level3HingeF::ShearFree,
 // hinge/level3_travelling_f.cpp): at every instant F sits where the virtual-work load of the
 // current configuration is stationary in the hinge position, which is where the shear
-// vanishes at F; θ_E is the edge of the held cap and does not rotate in this mechanism set.
+// vanishes at F; E (of the Ecb mechanism) is fixed where it forms, at the held cap's edge or
+// the scene's θ_E, not inside the top flat.
 #pragma once
 
 #include <array>
