@@ -52,6 +52,7 @@ EcbPoints level3_ecb_points(const Level3Ring& r, double phi, double psi, double 
   }
   p.c = {R, 0.0};
   p.b = {R - R * std::cos(psi), R * std::sin(psi) - R};  // the bottom flat's edge
+  p.e_start = theta_e <= phi ? phi : 0.0;
   return p;
 }
 
@@ -75,8 +76,8 @@ EcbPose level3_ecb_pose(const Level3Ring& r, const EcbPoints& p, double psi, dou
   s.dcrush = (cx - p.e[0]) * s.dbeta - vx;
   if (!(s.dcrush > 0.0) || !(s.beta >= -1e-12)) return s;
   const double k = r.hardening_k, M0 = r.plastic_moment_nm, b = std::max(s.beta, 0.0);
-  s.dissipation = 2.0 * M0 * (hinge_work(k, 0.0, b) + hinge_work(k, psi, b + q) + hinge_work(k, psi, q));
-  const double rate = 2.0 * M0 * ((1.0 + k * b) * s.dbeta + (1.0 + k * (psi + b + q)) * (s.dbeta + 1.0) + (1.0 + k * (psi + q)));
+  s.dissipation = 2.0 * M0 * (hinge_work(k, p.e_start, b) + hinge_work(k, psi, b + q) + hinge_work(k, psi, q));
+  const double rate = 2.0 * M0 * ((1.0 + k * (p.e_start + b)) * s.dbeta + (1.0 + k * (psi + b + q)) * (s.dbeta + 1.0) + (1.0 + k * (psi + q)));
   s.load = rate / s.dcrush;
   s.valid = std::isfinite(s.load);
   return s;

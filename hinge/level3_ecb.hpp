@@ -13,9 +13,11 @@
 //   B–B′ is inextensible and B stays on the axis by symmetry), which gives β(q);
 //   crush δ(q) = y_B′(q) − y_B′₀ (B′ rising towards the held cap).
 // Hinge rotations: E β, C β + q, B′ q, all growing monotonically along the trace. Hinge moment
-// M0 (1 + k θ_h) (Redwood's law of the other modes), θ_h the hinge's rotation counted from 0
-// at E (a new hinge) and from ψ_s at C and B′ (they carried the bottom mechanism), so
-//   D(q) = 2 M0 [G(0, β) + G(ψ_s, β + q) + G(ψ_s, q)],   G(a, Δ) = Δ + k (a Δ + Δ²/2)
+// M0 (1 + k θ_h) (Redwood's law of the other modes), θ_h the hinge's rotation counted from
+// e_start at E (φ at the top flat's edge, where the uniform mechanism's travelling hinge sits;
+// 0 on the rigid quadrant beyond it) and from ψ_s at C and B′ (they carried the bottom
+// mechanism), so
+//   D(q) = 2 M0 [G(e_start, β) + G(ψ_s, β + q) + G(ψ_s, q)],   G(a, Δ) = Δ + k (a Δ + Δ²/2)
 // (both halves), exactly; the load P = dD/dδ = (dD/dq)/(dδ/dq) at the table nodes, exactly
 // too; at q = 0 it is level3_e_rate's virtual-work load with hardening 1 + kψ_s at C and B′.
 // The trace ends (geometric limit) where C–B′ turns level (B′ at its reach), β(q) has no
@@ -43,6 +45,11 @@ namespace ringcrush::hinge {
 // The three hinge points of the E–C–B mechanism on the ring state (φ, ψ, θ_E), ring frame.
 struct EcbPoints {
   std::array<double, 2> e, c, b;  // E, C, B′
+  // Rotation E's hardening counts from: φ when E sits on the top flat's edge — the place of
+  // the uniform mechanism's travelling hinge, which carries Redwood's 1 + kφ like every hinge
+  // of that mechanism (§4.1.2) — and 0 for an E out on the rigid quadrant (no plastic work
+  // there yet).
+  double e_start = 0.0;
 };
 EcbPoints level3_ecb_points(const Level3Ring& r, double phi, double psi, double theta_e);
 

@@ -308,6 +308,13 @@ class Level3Chain final : public HybridSystem {
     return s.valid ? s.load : std::numeric_limits<double>::infinity();  // no mechanism: never selected
   }
   const EcbMechanism& ecb(int i) const { return ecb_[static_cast<std::size_t>(i)]; }
+  // E–C–B replaces a flowing bottom mechanism only when it is cheaper by a margin: at the
+  // reinforcement the two loads are equal (E on the flat's edge carries the uniform
+  // mechanism's hardening, level3_ecb.hpp), and a tie must not be decided by round-off. The
+  // candidate's root fires at a full margin below F, the selection asks for half of it, so
+  // the event that finds E–C–B cheaper also selects it.
+  static constexpr double kEcbSwitchMargin = 1e-6;
+  double switch_margin(int j) const { return j % kM == kE && !ecb_started_[j / kM] ? kEcbSwitchMargin : 0.0; }
   // E of ring i's E–C–B: the chosen θ_E, but not inside the top flat (material angles below
   // the uniform angle φ = psi0_): that flat is pressed flat-on-flat by the ring above over its
   // length, and an E inside it would lift its outer part into that ring at first order in β
@@ -401,7 +408,7 @@ class Level3Chain final : public HybridSystem {
   void event_roots(double, const double* y, double* g) override {
     for (int j = 0; j < m_; ++j) {
       if (active_[j]) g[j] = margin(y, j) / d_;
-      else if (available(j)) g[j] = std::max((y[2] - load(y, j)) / p0_, -1e3);  // E–C–B may be +∞
+      else if (available(j)) g[j] = std::max((y[2] * (1.0 - switch_margin(j)) - load(y, j)) / p0_, -1e3);  // E–C–B may be +∞
       else g[j] = 1.0;
     }
     // A softening mechanism turns hardening, or a hardening one starts to soften (E–C–B's
@@ -462,7 +469,8 @@ class Level3Chain final : public HybridSystem {
         if (available(j) && load(y.data(), j) <= F * (1.0 + 1e-7)) active_[j] = true;
       for (int i = 0; i < n_; ++i) {  // one mechanism per ring underneath: the cheaper
         const int b = kM * i + kL, e = kM * i + kE;
-        if (active_[b] && active_[e]) active_[load(y.data(), e) < load(y.data(), b) ? b : e] = false;
+        if (active_[b] && active_[e])
+          active_[load(y.data(), e) < load(y.data(), b) * (1.0 - 0.5 * kEcbSwitchMargin) ? b : e] = false;
       }
       for (int j = 0; j < m_ && soft_ < 0; ++j)  // softening: the one nearest the impactor
         if (active_[j] && slope(y.data(), j) < 0.0) soft_ = j;

@@ -83,6 +83,16 @@ TEST(Level3Ecb, OnsetMatchesTheClosedFormAndTheDrawnShapeRate) {
     EXPECT_NEAR(level3_ecb_onset_load(kRigidPlastic, a, a, a) / bottom, 1.0, 1e-12) << a;
     EXPECT_LT(level3_ecb_onset_load(kRigidPlastic, a, a + 0.15, a), kRigidPlastic.collapse_load() / std::cos(a + 0.15)) << a;
   }
+  // With Redwood hardening: E on the flat's edge carries the uniform mechanism's 1 + kφ, so
+  // from ψ = φ the two loads are equal again (an E counted as a fresh hinge would be cheaper
+  // by hardening bookkeeping alone: the test fails with e_start = 0); E out on the rigid
+  // quadrant is a fresh hinge.
+  for (double a : {0.2, 0.6, 1.0}) {
+    const double bottom = kRing.collapse_load() * (1.0 + kRing.hardening_k * a) / std::cos(a);
+    EXPECT_NEAR(level3_ecb_onset_load(kRing, a, a, a) / bottom, 1.0, 1e-12) << a;
+    EXPECT_DOUBLE_EQ(level3_ecb_points(kRing, a, a, a).e_start, a);
+    EXPECT_DOUBLE_EQ(level3_ecb_points(kRing, a, a, a + 0.1).e_start, 0.0);
+  }
   EXPECT_THROW(level3_ecb_mechanism(kRing, -0.1, psi, th), std::invalid_argument);
 }
 
