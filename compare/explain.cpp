@@ -111,10 +111,15 @@ std::vector<std::string> explain_hinge(const Scene& s) {
                 "the crush alone (never set)");
   if (s.hinge.level == "3")
     e.push_back(s.hinge.level3_hinge_e == HingeSettings::Level3HingeE::ShearFree
-                    ? std::string("Level 3: hinge E of a ring under a wrap at the least-load (shear-free) place beyond the held cap, "
-                                  "reported; statics check |M| <= M0 per ring (hinge.level3_hinge_e)")
-                    : std::string("Level 3: hinge E of a ring under a wrap fixed at 45°, reported; statics check |M| <= M0 per "
+                    ? std::string("Level 3: hinge E of a ring under a wrap at the least-load (shear-free) place beyond the held cap when the ring is reinforced, "
+                                  "the E of its E-C-B; statics check |M| <= M0 per ring (hinge.level3_hinge_e)")
+                    : std::string("Level 3: hinge E of a ring under a wrap fixed at 45° (the E of its E-C-B); statics check |M| <= M0 per "
                                   "ring (hinge.level3_hinge_e)"));
+  if (s.hinge.level == "3")
+    e.push_back(s.hinge.level3_ring_under == HingeSettings::Level3RingUnder::Bottom
+                    ? std::string("Level 3: a ring under a wrap flows in the bottom mechanism only (hinge.level3_ring_under)")
+                    : std::string("Level 3: a ring under a wrap flows in the least-load of bottom and E-C-B, E fixed where "
+                                  "it forms (hinge.level3_ring_under)"));
   e.push_back("the FE model is not built by the hinge run");
   return e;
 }

@@ -37,6 +37,9 @@ hinge::Level3Input level3_input(const Scene& scene, const Level3RunOptions& extr
   }
   in.hinge_e = scene.hinge.level3_hinge_e == HingeSettings::Level3HingeE::ShearFree ? hinge::Level3HingeE::ShearFree
                                                                                     : hinge::Level3HingeE::Fixed;
+  in.ring_under = scene.hinge.level3_ring_under == HingeSettings::Level3RingUnder::Bottom
+                      ? hinge::Level3RingUnder::Bottom
+                      : hinge::Level3RingUnder::LeastLoad;
   return in;
 }
 
@@ -151,12 +154,13 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
     mech.push_back({{"ring", i + 1}, {"mechanism", hinge::to_string(rr.mode)}, {"wrap_selected", rr.wrap_started},
                     {"under_wrap", rr.reinforced}, {"uniform_crush_m", rr.uniform_crush_m},
                     {"wrap_crush_m", rr.wrap_crush_m}, {"bottom_crush_m", rr.bottom_crush_m},
+                    {"ecb_crush_m", rr.ecb_crush_m},
                     {"plastic_work_J", rr.plastic_work_j},
                     // statics check (hinge/level3_statics.hpp): > 1 means another hinge needed
                     {"moment_ratio_max", rr.peak_moment_ratio},
                     {"moment_ratio_max_angles_deg", rr.peak_moment_angles_deg},
                     {"moment_ratio_max_time_s", rr.peak_moment_time_s}});
-    if (rr.reinforced) {  // hinge E of the ring under a wrap (hinge/level3_travelling_e.hpp)
+    if (rr.reinforced && rr.e_onset_load_n > 0.0) {  // E reported in bottom states (hinge/level3_travelling_e.hpp)
       mech.back()["held_cap_deg"] = rr.held_cap * 180.0 / std::numbers::pi;
       mech.back()["theta_E_deg"] = rr.theta_e * 180.0 / std::numbers::pi;
       mech.back()["E_mechanism_load_N"] = rr.e_mechanism_load_n;
@@ -167,6 +171,12 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
                               {"bottom_load_N", rr.bottom_onset_load_n}};
       mech.back()["E_cheaper_states"] = rr.e_cheaper_states;
       mech.back()["E_cheaper_from_s"] = rr.e_cheaper_time_s >= 0 ? nlohmann::json(rr.e_cheaper_time_s) : nlohmann::json();
+    }
+    if (rr.ecb_started) {  // the E–C–B the chain switched into (hinge/level3_ecb.hpp)
+      mech.back()["ecb"] = {{"theta_E_deg", rr.ecb_theta_e * 180.0 / std::numbers::pi},
+                              {"psi_at_switch_deg", rr.ecb_psi * 180.0 / std::numbers::pi},
+                              {"rotation_E_rad", rr.ecb_rotation_e},
+                              {"rotation_CB_rad", rr.ecb_rotation_cb}};
     }
     moment_ratio.push_back(rr.peak_moment_ratio);
   }
@@ -188,6 +198,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
              {"hinge_F", in.theta_f >= 0 ? "fixed" : hinge::to_string(in.hinge_f)},
              {"theta_F_final_deg", theta_f_final(res) * 180.0 / std::numbers::pi},
              {"hinge_E", hinge::to_string(in.hinge_e)},
+             {"ring_under", hinge::to_string(in.ring_under)},
              {"moment_ratio_max", moment_ratio},
              {"collapse_load_N", ring.collapse_load()},
              {"wrap_onset_load_N", wrap.load.front()},

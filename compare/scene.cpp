@@ -409,6 +409,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
         "level3_hinge_e",
         {{"fixed", HingeSettings::Level3HingeE::Fixed}, {"shear_free", HingeSettings::Level3HingeE::ShearFree}},
         h.level3_hinge_e);
+    h.level3_ring_under = r.choice<HingeSettings::Level3RingUnder>(
+        "level3_ring_under",
+        {{"bottom", HingeSettings::Level3RingUnder::Bottom}, {"least_load", HingeSettings::Level3RingUnder::LeastLoad}},
+        h.level3_ring_under);
     require(h.level3_theta_f_deg < 0 || (h.level3_theta_f_deg > 90 && h.level3_theta_f_deg < 180), r,
             "level3_theta_f_deg",
             fmt::format("{} must lie in (90, 180) (or be negative: F placed by level3_hinge_f)", h.level3_theta_f_deg));

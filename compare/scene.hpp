@@ -126,6 +126,9 @@ struct HingeSettings {
   // Level 3 hinge E of a ring under a wrap (hinge/level3_travelling_e.hpp): fixed at 45°, or
   // the least-load (shear-free) E beyond the held cap, re-found at every output state.
   enum class Level3HingeE { Fixed, ShearFree } level3_hinge_e = Level3HingeE::Fixed;
+  // Level 3 ring under a wrap: the bottom mechanism only, or the least load of bottom and
+  // E–C–B at every event (hinge/level3_ecb.hpp).
+  enum class Level3RingUnder { Bottom, LeastLoad } level3_ring_under = Level3RingUnder::LeastLoad;
 };
 
 struct Outputs {

@@ -40,7 +40,9 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
     // statics leaves out: it is not checked (nor is its E, which could not turn).
     if (states[i].crush_m >= lock * (1.0 - 1e-9)) continue;
     // The hinge moment of the ring's flowing mechanism: Redwood's hardening raises it to
-    // M0 (1 + kφ) (uniform) or M0 (1 + kψ) (bottom); the wrap has none (level3_mechanism.hpp).
+    // M0 (1 + kφ) (uniform) or M0 (1 + kψ) (bottom, and E–C–B: its C and B′ carry the bottom
+    // mechanism's 1 + kψ_s and more, its new E less — the bottom value is kept); the wrap has
+    // none (level3_mechanism.hpp).
     const auto& si = states[i];
     const double hard = si.mode == Level3Mode::Wrap ? 1.0
                         : si.reinforced             ? 1.0 + in.ring.hardening_k * si.bottom_angle
@@ -52,7 +54,9 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
       rr.peak_moment_time_s = time_s;
       rr.peak_moment_angles_deg = st.peak_angles_deg;
     }
-    if (!states[i].reinforced || i == 0) continue;
+    // E–C–B against the bottom mechanism while the ring flows in the bottom mode (once E has
+    // turned the chain has made that choice itself: level3_mechanism.cpp).
+    if (!states[i].reinforced || i == 0 || states[i].ecb_started) continue;
     rr.held_cap = level3_held_cap(shapes[i - 1], shapes[i], 1.1 * t);
     // C and B of the E–C–B are the bottom mechanism's hinges, hardened to 1 + kψ; E is new.
     const auto e = in.hinge_e == Level3HingeE::ShearFree ? level3_shear_free_e(shapes[i], M0, rr.held_cap, hard)

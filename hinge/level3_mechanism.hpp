@@ -13,6 +13,10 @@
 //   Bottom   the ring underneath a wrapping ring (hinges E, C, B, none at A): the cap A–E
 //            is held by the wrapped ring, the lower quadrant turns about C and flattens at
 //            B; δ = R (sin ψ − sin ψ0), P = P0 (1 + kψ)/cos ψ from the current ψ0.
+//   Ecb      the ring underneath turning E (hinges E, C, B′; hinge/level3_ecb.hpp): cap A–E
+//            held, E–C turning about E, C–B′ about C, B′ on its line; traced with finite
+//            rotations and tabulated like the wrap. Selected against Bottom by least load
+//            (Level3RingUnder::LeastLoad), one-way.
 //
 // The chain (simulate_level3): rings in series between the impactor (mass M) and a fixed
 // target, ring inertia neglected (a massless, quasi-static rigid-plastic chain, so the
@@ -26,7 +30,8 @@
 // load), or travelling by the shear-free condition (Level3HingeF::ShearFree,
 // hinge/level3_travelling_f.cpp): at every instant F sits where the virtual-work load of the
 // current configuration is stationary in the hinge position, which is where the shear
-// vanishes at F; θ_E is the edge of the held cap and does not rotate in this mechanism set.
+// vanishes at F; E (of the Ecb mechanism) is fixed where it forms, at the held cap's edge or
+// the scene's θ_E, not inside the top flat.
 #pragma once
 
 #include <array>
@@ -48,12 +53,20 @@ struct Level3Ring {
   void validate() const;
 };
 
-enum class Level3Mode { Uniform, Wrap, Bottom };
+// Ecb: the ring underneath flowing in the E–C–B mechanism (hinge/level3_ecb.hpp).
+enum class Level3Mode { Uniform, Wrap, Bottom, Ecb };
 std::string to_string(Level3Mode);
 
 // Uniform (DeRuntz–Hodge) mechanism in closed form: load, slope dP/dδ and work at crush δ.
 double level3_uniform_load(const Level3Ring& r, double crush);
 double level3_uniform_energy(const Level3Ring& r, double crush);
+
+// A load table in δ (nodes `crush` increasing, `load` there): cubic Hermite load, its slope
+// and its exact integral from crush[0] (so a mechanism's work is ∫ P dδ of what the chain
+// integrates). Used by the wrap and the E–C–B tables.
+double level3_table_load(const std::vector<double>& crush, const std::vector<double>& load, double q);
+double level3_table_slope(const std::vector<double>& crush, const std::vector<double>& load, double q);
+double level3_table_energy(const std::vector<double>& crush, const std::vector<double>& load, double q);
 
 // The wrap mechanism of the lower arc, tabulated over κ ∈ [1/R, −1/(R+t)].
 struct WrapMechanism {
@@ -110,9 +123,16 @@ std::string to_string(Level3HingeF);
 // Level3Input::theta_e, or ShearFree: the least-load E–C–B hinge on the current shape beyond
 // the cap held by the wrapped ring, re-found at every output state. E is reported (hinge map,
 // E–C–B load against the flowing bottom mechanism); the chain's bottom mechanism does not
-// turn E.
+// turn E. With Level3RingUnder::LeastLoad the E–C–B flows (hinge/level3_ecb.hpp) with E
+// placed by this option when the ring is reinforced, moved out to the top flat's edge if on it.
 enum class Level3HingeE { Fixed, ShearFree };
 std::string to_string(Level3HingeE);
+
+// The mechanisms of the ring underneath a wrap (THEORY §4.5): Bottom only (the chain before
+// session 7), or LeastLoad: the least load of Bottom and E–C–B (hinge/level3_ecb.hpp) at
+// every event. Once E has turned the ring stays in E–C–B (level3_mechanism.cpp, select).
+enum class Level3RingUnder { Bottom, LeastLoad };
+std::string to_string(Level3RingUnder);
 
 struct Level3Input {
   int rings = 6;
@@ -123,7 +143,8 @@ struct Level3Input {
   double theta_f = -1.0;            // >= 0: F fixed there; < 0: placed by hinge_f
   Level3HingeF hinge_f = Level3HingeF::LeastOnsetLoad;
   double theta_e = 0.7853981633974483;  // edge of the held cap (reported only)
-  Level3HingeE hinge_e = Level3HingeE::Fixed;
+  Level3HingeE hinge_e = Level3HingeE::Fixed;  // E of the flowing E–C–B: chosen once, at the reinforcement
+  Level3RingUnder ring_under = Level3RingUnder::LeastLoad;
   void validate() const;
 };
 
@@ -141,7 +162,11 @@ struct Level3RingResult {
   double wrap_curvature = 0.0;       // κ of the arc F–B (1/R undeformed; travelling: at B)
   double wrap_theta_f = 0.0;         // current θ_F (rad; 0 before the wrap)
   double bottom_angle = 0.0;         // ψ
-  Level3Mode mode = Level3Mode::Uniform;  // Wrap if its wrap was selected, Bottom if under a wrap
+  // E–C–B (hinge/level3_ecb.hpp): its crush, E (rad), ψ at the switch, and the rotations β
+  // of E–C about E and q of C–B′ (rad); ecb_started once E has turned.
+  double ecb_crush_m = 0.0, ecb_theta_e = 0.0, ecb_psi = 0.0, ecb_rotation_e = 0.0, ecb_rotation_cb = 0.0;
+  bool ecb_started = false;
+  Level3Mode mode = Level3Mode::Uniform;  // Wrap if its wrap was selected, Bottom / Ecb if under a wrap
   bool wrap_started = false;
   bool reinforced = false;           // under a wrapping ring
   std::vector<Level3Hinge> hinges;

@@ -135,6 +135,7 @@ TEST(Level3TravellingE, ChainWithShearFreeEIsUnchangedAndPlacesE) {
   in.ring = kRing;
   in.impactor_mass_kg = 0.257;
   in.impactor_velocity_m_s = 45.0;  // Level 3 alternates wrap / bottom from 40 m/s (README)
+  in.ring_under = Level3RingUnder::Bottom;  // E reported, not flowed (level3_ecb_test: flowed)
   HybridOptions o;
   o.relative_tolerance = 1e-8;
   o.absolute_tolerance = 1e-10;
