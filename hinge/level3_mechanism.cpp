@@ -512,7 +512,7 @@ class Level3Chain final : public HybridSystem {
     bottom_frozen_[i] = y[static_cast<std::size_t>(state(kM * i + kL))];
     ecb_started_[i] = true;
     events_.push_back({t, "mode_selected", i,
-                       fmt::format("E-C-B under ring {} (E at {:.1f} deg, load {:.1f} N < bottom {:.1f} N, psi = {:.1f} deg)", i,
+                       fmt::format("E-C-B under ring {} (E at {:.1f} deg, load {:.3f} N < bottom {:.3f} N, psi = {:.3f} deg)", i,
                                    ecb_theta_e(i) * 180.0 / pi, pe, pb, psi * 180.0 / pi)});
   }
 
