@@ -20,8 +20,8 @@
 //    on one chain of 8 additions per entry), the two rows of a column one 2-wide operation;
 //  - a nodal force is one 2-wide operation per node, and the stress and bulk-viscous forces
 //    of a point share the pass over its ∇N;
-//  - the push-forward of the trial stress (a square root and a division per point) is done
-//    for all points after the force loop, where the points overlap;
+//  - the divisions — bulk-viscous pressure, push-forward of the trial stress (with a square
+//    root) — are done for all points in passes of their own, where the points overlap;
 //  - the material's elastic branch and the push-forward are inline (j2_plane_stress.hpp,
 //    kinematics.hpp).
 #include "fe/element/cps8_element.hpp"
@@ -124,14 +124,21 @@ void cps8_force(const Cps8Geometry& geo, const double* u, const PointState* comm
     tr_r[r] = e(0) + e(1);
   }
 
+  // ΔE at the stress points and, with bulk viscosity, the pressure q_i = coefficient tr ΔE_i
+  // / dt of each (bulk_viscosity.hpp: the point's own, not the Barlow-averaged, rate) — all
+  // divisions in one pass, where they overlap instead of stalling the force loop.
+  std::array<Eigen::Vector3d, 9> strain;
+  std::array<double, 9> q{};
+  for (int i = 0; i < np; ++i) strain[i] = green_lagrange(g.at(i));
+  if (viscous)
+    for (int i = 0; i < np; ++i) q[i] = viscous->coefficient * (strain[i](0) + strain[i](1)) / viscous->dt;
+
   double* const force = out.force.data();
   double* const viscous_force = viscous ? viscous->force->data() : nullptr;
   for (int i = 0; i < np; ++i) {
     const ShapeGrad& di = geo.dndx[i];
     const Mat2 f = g.at(i);
-    Eigen::Vector3d e = green_lagrange(f);
-    // bulk_viscosity.hpp: the point's own (not the Barlow-averaged) volumetric rate.
-    const double q = viscous ? viscous->coefficient * (e(0) + e(1)) / viscous->dt : 0.0;
+    Eigen::Vector3d e = strain[i];
     if (selective) {
       double tr_bar = 0;
       for (int r = 0; r < 4; ++r) tr_bar += geo.barlow(i, r) * tr_r[r];
@@ -142,7 +149,7 @@ void cps8_force(const Cps8Geometry& geo, const double* u, const PointState* comm
     const J2Update up = material.update_stress(e, committed[i]);
     const double w = geo.weight[i] * committed[i].thickness_stretch;
     const Mat2 s = point_stress(up.stress, geo, i, w, q_r);
-    if (viscous) add_nodal_forces(di, f * s, w, force, f, q * geo.weight[i], viscous_force);
+    if (viscous) add_nodal_forces(di, f * s, w, force, f, q[i] * geo.weight[i], viscous_force);
     else add_nodal_force(di, f * s, w, force);
     out.elastic_energy += w * up.elastic_energy;
     start_trial(up, committed[i], w, trial[i]);
