@@ -193,8 +193,7 @@ struct ChainModel::Impl {
   // into their slots, then each sums one of the two fixed halves in element order — the
   // caller [0, split) into force, the helper [split, ne) into helper_force — exactly the sums
   // elements() forms on one thread, so the result is bitwise the one-thread result whichever
-  // thread computed which element. Returns false if the other thread failed (ForkJoin
-  // rethrows its exception).
+  // thread computed which element.
   void deal(const Eigen::VectorXd& u, bool viscous) {
     Cps8Output eo;
     ElementVector fv;
@@ -214,6 +213,8 @@ struct ChainModel::Impl {
       throw;
     }
   }
+  // Sums the slots of [e0, e1) once every element is done; false if the other thread failed
+  // (ForkJoin then rethrows its exception).
   bool sum_slots(int e0, int e1, double* force, double* viscous, double& elastic, double& plastic) const {
     if (!dealer.wait_all()) return false;
     elastic = plastic = 0;
