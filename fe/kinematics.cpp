@@ -5,13 +5,6 @@
 
 namespace ringcrush::fe {
 
-Eigen::Vector3d cauchy_from_pk2(const Mat2& f, const Eigen::Vector3d& s, double stretch33) {
-  Mat2 sm;
-  sm << s(0), s(2), s(2), s(1);
-  const Mat2 sigma = f * sm * f.transpose() / (f.determinant() * stretch33);
-  return {sigma(0, 0), sigma(1, 1), sigma(0, 1)};
-}
-
 Mat2 rotation(double angle) {
   Mat2 r;
   r << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);

@@ -44,8 +44,15 @@ inline Eigen::Vector3d green_lagrange(const Mat2& f) {
 }
 
 // Cauchy stress (Voigt [σ11, σ22, σ12]) from PK2 in plane stress; stretch33 is the
-// out-of-plane stretch λ3 (J = det F · λ3).
-Eigen::Vector3d cauchy_from_pk2(const Mat2& f, const Eigen::Vector3d& s, double stretch33);
+// out-of-plane stretch λ3 (J = det F · λ3). Inline: every stress point of every explicit
+// step pushes its stress forward (element kernels, cps8_force.cpp).
+inline Eigen::Vector3d cauchy_from_pk2(const Mat2& f, const Eigen::Vector3d& s, double stretch33) {
+  Mat2 sm;
+  sm << s(0), s(2), s(2), s(1);
+  const double det = f(0, 0) * f(1, 1) - f(1, 0) * f(0, 1);  // as Eigen's 2×2 determinant()
+  const Mat2 sigma = f * sm * f.transpose() / (det * stretch33);
+  return {sigma(0, 0), sigma(1, 1), sigma(0, 1)};
+}
 
 Mat2 rotation(double angle);
 

@@ -16,6 +16,7 @@
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
+#include "fe/dynamics/work_dealer.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
@@ -59,6 +60,10 @@ double thickness_measure(const PointState* states, int points) {
   return l3;
 }
 
+// Elements per dealt chunk on two threads (work_dealer.hpp): ≈ 3 µs of work, long against
+// the shared counter's cost, short against a step.
+constexpr int kDealChunk = 4;
+
 }  // namespace
 
 struct ChainModel::Impl {
@@ -100,15 +105,19 @@ struct ChainModel::Impl {
   double increment_time = 0, bulk_scale = 0;
   Cps8GeometryUpdater updater;
   double width;
-  // Two threads: the caller does the contact and elements [0, split), the helper elements
-  // [split, ne) into its own force buffer (fixed split: the sums, hence the results, do not
-  // depend on timing).
+  // Two threads: the caller does the contact, both do elements; the element sums are formed
+  // in two fixed halves, [0, split) into the caller's buffers and [split, ne) into the
+  // helper's (fixed order: the sums, hence the results, do not depend on timing).
   std::unique_ptr<ForkJoin> fork;
   int split = 0;
   Eigen::VectorXd helper_force, helper_viscous;
   // commit() moved x_n: the element geometry is re-derived in the next element pass.
   bool geometry_stale = false;
   std::vector<ElementMatrix> tangents;  // want_tangent with two threads: scattered after the join
+  // Force-only pass with two threads: the elements dealt in chunks, each into its slot.
+  WorkDealer dealer;
+  std::vector<ElementVector> slot_force, slot_viscous;
+  std::vector<std::array<double, 2>> slot_energy;  // elastic energy, plastic work
 
   explicit Impl(const ChainInput& in)
       : topo(make_chain_topology(in)),
@@ -131,41 +140,11 @@ struct ChainModel::Impl {
                 double* viscous, double& elastic, double& plastic) {
     Cps8Output eo;
     ElementVector fv;
-    double ue[16];
-    const int ppe = points_per_element;
     elastic = plastic = 0;
-    const auto& elems = topo.mesh.elements;
     for (int e = e0; e < e1; ++e) {
-      if (geometry_stale) regeometry(e, e + 1, u_n);
-      const auto& conn = elems[e];
-      for (int a = 0; a < 8; ++a) {
-        ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
-        ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
-      }
-      const std::size_t p0 = static_cast<std::size_t>(e) * ppe;
-      if (viscous) {
-        fv.setZero();
-        const double coefficient = bulk_scale / std::sqrt(omega2_exact[e]);
-        if (want_tangent) {
-          cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, true, eo);
-          add_bulk_viscous_force(geometry[e], ue, increment_time, coefficient, fv);
-        } else {
-          const BulkViscousLoad load{coefficient, increment_time, &fv};
-          cps8_force(geometry[e], ue, &committed[p0], &trial[p0], material, eo, &load);
-        }
-      } else {
-        cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, want_tangent, eo);
-      }
-      for (int a = 0; a < 8; ++a) {
-        force[2 * conn[a]] += eo.force(2 * a);
-        force[2 * conn[a] + 1] += eo.force(2 * a + 1);
-      }
-      if (viscous) {
-        for (int a = 0; a < 8; ++a) {
-          viscous[2 * conn[a]] += fv(2 * a);
-          viscous[2 * conn[a] + 1] += fv(2 * a + 1);
-        }
-      }
+      evaluate_element(e, u, want_tangent, viscous != nullptr, eo, fv);
+      scatter(e, eo.force, force);
+      if (viscous) scatter(e, fv, viscous);
       elastic += eo.elastic_energy;
       plastic += eo.plastic_work;
       if (want_tangent) {
@@ -173,6 +152,79 @@ struct ChainModel::Impl {
         else system->add_element(e, eo.tangent.data());
       }
     }
+  }
+
+  // Element e alone: force, energies (and tangent) into eo, its bulk-viscous force into fv
+  // (viscous), after re-deriving its geometry on x_n when a commit has moved it.
+  void evaluate_element(int e, const Eigen::VectorXd& u, bool want_tangent, bool viscous, Cps8Output& eo,
+                        ElementVector& fv) {
+    if (geometry_stale) regeometry(e, e + 1, u_n);
+    const auto& conn = topo.mesh.elements[e];
+    double ue[16];
+    for (int a = 0; a < 8; ++a) {
+      ue[2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
+      ue[2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
+    }
+    const std::size_t p0 = static_cast<std::size_t>(e) * points_per_element;
+    if (viscous) {
+      fv.setZero();
+      const double coefficient = bulk_scale / std::sqrt(omega2_exact[e]);
+      if (want_tangent) {
+        cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, true, eo);
+        add_bulk_viscous_force(geometry[e], ue, increment_time, coefficient, fv);
+      } else {
+        const BulkViscousLoad load{coefficient, increment_time, &fv};
+        cps8_force(geometry[e], ue, &committed[p0], &trial[p0], material, eo, &load);
+      }
+    } else {
+      cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, want_tangent, eo);
+    }
+  }
+
+  void scatter(int e, const ElementVector& fe, double* global) const {
+    const auto& conn = topo.mesh.elements[e];
+    for (int a = 0; a < 8; ++a) {
+      global[2 * conn[a]] += fe(2 * a);
+      global[2 * conn[a] + 1] += fe(2 * a + 1);
+    }
+  }
+
+  // Force-only pass on two threads (work_dealer.hpp): both threads take chunks of elements
+  // into their slots, then each sums one of the two fixed halves in element order — the
+  // caller [0, split) into force, the helper [split, ne) into helper_force — exactly the sums
+  // elements() forms on one thread, so the result is bitwise the one-thread result whichever
+  // thread computed which element.
+  void deal(const Eigen::VectorXd& u, bool viscous) {
+    Cps8Output eo;
+    ElementVector fv;
+    int b = 0, end = 0;
+    try {
+      while (dealer.next(b, end)) {
+        for (int e = b; e < end; ++e) {
+          evaluate_element(e, u, false, viscous, eo, fv);
+          slot_force[e] = eo.force;
+          if (viscous) slot_viscous[e] = fv;
+          slot_energy[e] = {eo.elastic_energy, eo.plastic_work};
+        }
+        dealer.done(end - b);
+      }
+    } catch (...) {
+      dealer.fail();
+      throw;
+    }
+  }
+  // Sums the slots of [e0, e1) once every element is done; false if the other thread failed
+  // (ForkJoin then rethrows its exception).
+  bool sum_slots(int e0, int e1, double* force, double* viscous, double& elastic, double& plastic) const {
+    if (!dealer.wait_all()) return false;
+    elastic = plastic = 0;
+    for (int e = e0; e < e1; ++e) {
+      scatter(e, slot_force[e], force);
+      if (viscous) scatter(e, slot_viscous[e], viscous);
+      elastic += slot_energy[e][0];
+      plastic += slot_energy[e][1];
+    }
+    return true;
   }
 
   // Geometry of elements [e0, e1) on the configuration X + u (kinematics.hpp).
@@ -204,7 +256,14 @@ struct ChainModel::Impl {
       auto& m = *j.model;
       m.helper_force.setZero();
       if (j.viscous) m.helper_viscous.setZero();
-      m.elements(m.split, static_cast<int>(m.topo.mesh.elements.size()), *j.u, j.want_tangent, true,
+      const int ne = static_cast<int>(m.topo.mesh.elements.size());
+      if (!j.want_tangent) {
+        m.deal(*j.u, j.viscous);
+        m.sum_slots(m.split, ne, m.helper_force.data(), j.viscous ? m.helper_viscous.data() : nullptr, j.elastic,
+                    j.plastic);
+        return;
+      }
+      m.elements(m.split, ne, *j.u, j.want_tangent, true,
                  m.helper_force.data(), j.viscous ? m.helper_viscous.data() : nullptr, j.elastic, j.plastic);
     }
   };
@@ -315,11 +374,19 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     double load[1] = {0};
     two = getloadavg(load, 1) == 1 && load[0] < std::thread::hardware_concurrency() - 0.5;
   }
-  // The caller also does the contact (~20 % of the element work on the thesis chain).
+  // The two partial sums [0, split), [split, ne) of the element pass (the same on one thread
+  // or two). With the tangent the caller, which also does the contact, computes [0, split)
+  // and the helper the rest; force only, the elements are dealt (work_dealer.hpp) and the
+  // split only fixes the order of the sums.
   m.split = static_cast<int>(0.45 * ne);
   m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
   m.helper_viscous = Eigen::VectorXd::Zero(2 * nodes);
-  if (two) m.fork = std::make_unique<ForkJoin>();
+  if (two) {
+    m.fork = std::make_unique<ForkJoin>();
+    m.slot_force.resize(ne);
+    m.slot_viscous.resize(ne);
+    m.slot_energy.resize(ne);
+  }
   m.contributions.reserve(256);
   m.pressure.reserve(256);
 }
@@ -464,9 +531,15 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   if (m.fork) {
     if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
     Impl::ElementJob job{&m, &u, want_tangent, viscous};
+    if (!want_tangent) m.dealer.reset(ne, kDealChunk);
     m.fork->run(&Impl::ElementJob::run, &job, [&] {
       contact();
-      m.elements(0, m.split, u, want_tangent, true, out.force.data(), q_main, elastic, plastic);
+      if (want_tangent) {
+        m.elements(0, m.split, u, want_tangent, true, out.force.data(), q_main, elastic, plastic);
+      } else {
+        m.deal(u, viscous);
+        m.sum_slots(0, m.split, out.force.data(), q_main, elastic, plastic);
+      }
     });
     helper_elastic = job.elastic;
     helper_plastic = job.plastic;

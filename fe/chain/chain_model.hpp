@@ -30,7 +30,8 @@
 //    in SystemEvaluation::force and, separately, viscous_force; stable_step() is reduced by
 //    √(1 + b1²) − b1 (the central-difference limit with damping ξ = b1 in the highest mode);
 //  - with two threads (ChainInput::threads) the element loop is split over a persistent
-//    helper thread; the results are bitwise those of one thread.
+//    helper thread (force only: dealt in chunks while the caller also does the contact,
+//    fe/dynamics/work_dealer.hpp); the results are bitwise those of one thread.
 #pragma once
 
 #include <Eigen/Core>

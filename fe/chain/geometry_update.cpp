@@ -7,19 +7,23 @@
 namespace ringcrush::fe {
 
 namespace {
-// ∂N/∂x = ∂N/∂ξ J⁻ᵀ with J_ij = ∂x_j/∂ξ_i; returns det J.
-inline double gradients(const ShapeGrad& dn, const ElementCoords& x, ShapeGrad& dndx) {
-  const double j00 = dn.col(0).dot(x.col(0)), j01 = dn.col(0).dot(x.col(1));
-  const double j10 = dn.col(1).dot(x.col(0)), j11 = dn.col(1).dot(x.col(1));
-  const double det = j00 * j11 - j01 * j10;
-  const double inv = 1.0 / det;
-  // ∂N/∂x = ∂N/∂ξ J⁻ᵀ, J⁻ᵀ = (1/det) [[j11, −j10], [−j01, j00]].
-  for (int k = 0; k < 8; ++k) {
-    const double g = dn(k, 0), h = dn(k, 1);
-    dndx(k, 0) = (g * j11 - h * j01) * inv;
-    dndx(k, 1) = (h * j00 - g * j10) * inv;
-  }
-  return det;
+// J_ij = ∂x_j/∂ξ_i at one point and its determinant.
+struct Jacobian {
+  double j00, j01, j10, j11, det;
+};
+inline Jacobian jacobian(const ShapeGrad& dn, const ElementCoords& x) {
+  Jacobian j;
+  j.j00 = dn.col(0).dot(x.col(0));
+  j.j01 = dn.col(0).dot(x.col(1));
+  j.j10 = dn.col(1).dot(x.col(0));
+  j.j11 = dn.col(1).dot(x.col(1));
+  j.det = j.j00 * j.j11 - j.j01 * j.j10;
+  return j;
+}
+// ∂N/∂x = ∂N/∂ξ J⁻ᵀ, J⁻ᵀ = (1/det) [[j11, −j10], [−j01, j00]], all 8 nodes at once.
+inline void gradients(const ShapeGrad& dn, const Jacobian& j, double inv, ShapeGrad& dndx) {
+  dndx.col(0) = (dn.col(0) * j.j11 - dn.col(1) * j.j01) * inv;
+  dndx.col(1) = (dn.col(1) * j.j00 - dn.col(0) * j.j10) * inv;
 }
 }  // namespace
 
@@ -35,17 +39,27 @@ Cps8GeometryUpdater::Cps8GeometryUpdater(Integration rule) : rule_(rule) {
   for (int r = 0; r < 4; ++r) cps8_shape(red[r].g, red[r].h, n, dn_reduced_[r]);
 }
 
+// In three passes over the points — Jacobians, the reciprocals of their determinants,
+// gradients — rather than point by point: the 13 divisions are then independent and overlap
+// in the CPU instead of each holding up its point's gradients (perf: that wait was a fifth
+// of the update). Per point the operations are those of the point-by-point form.
 void Cps8GeometryUpdater::update(const ElementCoords& x, double thickness, Cps8Geometry& geo) const {
   if (geo.rule != rule_ || geo.points != points_)
     throw std::logic_error("Cps8GeometryUpdater: geometry built for another integration rule");
+  const int reduced = rule_ == Integration::Selective ? 4 : 0, n = points_ + reduced;
+  const auto dn = [&](int i) -> const ShapeGrad& { return i < points_ ? dn_[i] : dn_reduced_[i - points_]; };
+  std::array<Jacobian, 13> j;
+  std::array<double, 13> inv;
+  for (int i = 0; i < n; ++i) j[i] = jacobian(dn(i), x);
+  for (int i = 0; i < points_; ++i)
+    if (!(j[i].det > 0))
+      throw std::invalid_argument(fmt::format("CPS8 element inverted or degenerate (det J = {:g})", j[i].det));
+  for (int i = 0; i < n; ++i) inv[i] = 1.0 / j[i].det;
   for (int i = 0; i < points_; ++i) {
-    const double det = gradients(dn_[i], x, geo.dndx[i]);
-    if (!(det > 0))
-      throw std::invalid_argument(fmt::format("CPS8 element inverted or degenerate (det J = {:g})", det));
-    geo.weight[i] = weight_[i] * det * thickness;
+    gradients(dn_[i], j[i], inv[i], geo.dndx[i]);
+    geo.weight[i] = weight_[i] * j[i].det * thickness;
   }
-  if (rule_ == Integration::Selective)
-    for (int r = 0; r < 4; ++r) gradients(dn_reduced_[r], x, geo.dndx_reduced[r]);
+  for (int r = 0; r < reduced; ++r) gradients(dn_reduced_[r], j[points_ + r], inv[points_ + r], geo.dndx_reduced[r]);
 }
 
 }  // namespace ringcrush::fe

@@ -74,30 +74,6 @@ J2Update J2PlaneStress::update(const Vec3& strain_increment, const PointState& c
   return return_map(strain_increment, committed, true);
 }
 
-// Most points of an explicit step are elastic: the trial check and the elastic result are
-// written out in scalars (C, P and C⁻¹ of plane stress, same equations as return_map), and
-// only points whose trial stress reaches the current yield stress go to the return mapping.
-J2Update J2PlaneStress::update_stress(const Vec3& strain_increment, const PointState& committed) const {
-  // C = f [[1, ν, 0], [ν, 1, 0], [0, 0, (1−ν)/2]], C⁻¹ = [[1, −ν, 0], [−ν, 1, 0], [0, 0, 2(1+ν)]] / E:
-  // read from the tabulated matrices (no division per point).
-  const double f = c_(0, 0), c_nu = c_(0, 1), inv_e = c_inv_(0, 0), inv_e_nu = c_inv_(0, 1);
-  const Vec3& sn = committed.stress;
-  const double de0 = strain_increment(0), de1 = strain_increment(1);
-  const double t0 = sn(0) + f * de0 + c_nu * de1, t1 = sn(1) + c_nu * de0 + f * de1,
-               t2 = sn(2) + g_ * strain_increment(2);
-  const double sy_n = table_.yield_stress(committed.peeq);
-  const double xi_trial = 2.0 / 3.0 * (t0 * t0 + t1 * t1 - t0 * t1) + 2.0 * t2 * t2;  // SᵀPS
-  if (!(0.5 * xi_trial - sy_n * sy_n * (1.0 / 3.0) <= 1e-12 * sy_n * sy_n))
-    return return_map(strain_increment, committed, false);
-  J2Update out;
-  out.peeq = committed.peeq;
-  out.stress = Vec3(t0, t1, t2);
-  out.tangent.setZero();  // not computed
-  out.elastic_energy = 0.5 * (inv_e * (t0 * t0 + t1 * t1) + 2.0 * inv_e_nu * t0 * t1 + c_inv_(2, 2) * t2 * t2);
-  out.strain33_increment = inv_e_nu * (t0 + t1 - sn(0) - sn(1));  // −ν/E (Δσ11 + Δσ22)
-  return out;
-}
-
 J2Update J2PlaneStress::return_map(const Vec3& strain_increment, const PointState& committed,
                                    bool want_tangent) const {
   J2Update out;

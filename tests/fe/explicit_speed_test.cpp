@@ -1,4 +1,6 @@
 // The explicit step's speed-ups keep its results (issue 4 performance, README "Performance"):
+//  - the force-only CPS8 kernel, arranged for the CPU (cps8_force.cpp), is bitwise its plain
+//    point-by-point form, written out below from the public pieces;
 //  - the bulk viscosity formed inside the force-only element kernel (BulkViscousLoad) is
 //    bitwise the separate add_bulk_viscous_force();
 //  - the chain's element pass (geometry re-derived lazily after a commit, bulk viscosity
@@ -8,6 +10,8 @@
 //    the full stable step keeps its schedule; the activity is a hash of the active set.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "cps8_random_elements.hpp"
@@ -15,8 +19,97 @@
 #include "fe/chain/chain_model.hpp"
 #include "fe/dynamics/explicit_driver.hpp"
 #include "fe/element/bulk_viscosity.hpp"
+#include "fe/kinematics.hpp"
 
 using namespace ringcrush::fe;
+
+namespace {
+// r_a += c A ∇N_a, node by node (the plain form of the kernel's nodal force).
+void add_plain_nodal_force(const ShapeGrad& d, const Mat2& a, double c, ElementVector& force) {
+  const double a00 = c * a(0, 0), a01 = c * a(0, 1), a10 = c * a(1, 0), a11 = c * a(1, 1);
+  for (int k = 0; k < 8; ++k) {
+    force(2 * k) += a00 * d(k, 0) + a01 * d(k, 1);
+    force(2 * k + 1) += a10 * d(k, 0) + a11 * d(k, 1);
+  }
+}
+
+// cps8_force() point by point: f, ΔE, bulk viscosity, selective correction, material, nodal
+// force and trial state of one point after the other (cps8_element.hpp, bulk_viscosity.hpp).
+struct PlainForce {
+  ElementVector force = ElementVector::Zero(), viscous = ElementVector::Zero();
+  double elastic = 0, plastic = 0;
+  std::array<PointState, 9> trial{};
+};
+PlainForce plain_force(const Cps8Geometry& geo, const double* u, const PointState* committed,
+                       const J2PlaneStress& material, double coefficient, double dt) {
+  PlainForce out;
+  const bool selective = geo.rule == Integration::Selective;
+  std::array<Mat2, 4> f_r;
+  std::array<double, 4> tr_r{}, q_r{};
+  for (int r = 0; selective && r < 4; ++r) {
+    f_r[r] = deformation_gradient(geo.dndx_reduced[r], u);
+    const Eigen::Vector3d e = green_lagrange(f_r[r]);
+    tr_r[r] = e(0) + e(1);
+  }
+  for (int i = 0; i < geo.points; ++i) {
+    const Mat2 f = deformation_gradient(geo.dndx[i], u);
+    Eigen::Vector3d e = green_lagrange(f);
+    add_plain_nodal_force(geo.dndx[i], f, coefficient * (e(0) + e(1)) / dt * geo.weight[i], out.viscous);
+    if (selective) {
+      double tr_bar = 0;
+      for (int r = 0; r < 4; ++r) tr_bar += geo.barlow(i, r) * tr_r[r];
+      const double corr = 0.5 * (tr_bar - e(0) - e(1));
+      e(0) += corr;
+      e(1) += corr;
+    }
+    const J2Update up = material.update_stress(e, committed[i]);
+    const double w = geo.weight[i] * committed[i].thickness_stretch;
+    add_plain_nodal_force(geo.dndx[i], f * point_stress(up.stress, geo, i, w, q_r), w, out.force);
+    out.elastic += w * up.elastic_energy;
+    PointState& t = out.trial[i];
+    const double l3 = std::sqrt(std::max(1e-12, 1.0 + 2.0 * up.strain33_increment));
+    t.stress = cauchy_from_pk2(f, up.stress, l3);
+    t.plastic_strain = committed[i].plastic_strain + up.plastic_increment;
+    t.peeq = up.peeq;
+    t.plastic_work = committed[i].plastic_work + w * up.dissipation;
+    t.thickness_stretch = committed[i].thickness_stretch * l3;
+    out.plastic += t.plastic_work;
+  }
+  for (int r = 0; selective && r < 4; ++r) add_plain_nodal_force(geo.dndx_reduced[r], f_r[r], q_r[r], out.force);
+  return out;
+}
+}  // namespace
+
+TEST(ExplicitSpeed, ForceKernelIsBitwiseItsPointByPointForm) {
+  std::mt19937 rng(17);
+  const J2PlaneStress material(kernel_test::thesis_steel());
+  int yielded = 0;
+  for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective}) {
+    for (int k = 0; k < 30; ++k) {
+      const auto el = kernel_test::random_element(rng, k % 2 ? 1e-2 : 1e-4, k % 3 == 0);
+      const Cps8Geometry geo = cps8_geometry(el.x, rule, 0.0125);
+      const double coefficient = 3.7e3, dt = 5e-8;
+      const PlainForce ref = plain_force(geo, el.du, el.committed.data(), material, coefficient, dt);
+      std::array<PointState, 9> trial{};
+      Cps8Output out;
+      ElementVector viscous = ElementVector::Zero();
+      const BulkViscousLoad load{coefficient, dt, &viscous};
+      cps8_force(geo, el.du, el.committed.data(), trial.data(), material, out, &load);
+      EXPECT_EQ(out.force, ref.force);
+      EXPECT_EQ(viscous, ref.viscous);
+      EXPECT_EQ(out.elastic_energy, ref.elastic);
+      EXPECT_EQ(out.plastic_work, ref.plastic);
+      for (int i = 0; i < geo.points; ++i) {
+        EXPECT_EQ(trial[i].stress, ref.trial[i].stress);
+        EXPECT_EQ(trial[i].plastic_strain, ref.trial[i].plastic_strain);
+        EXPECT_EQ(trial[i].peeq, ref.trial[i].peeq);
+        EXPECT_EQ(trial[i].thickness_stretch, ref.trial[i].thickness_stretch);
+        if (trial[i].peeq > el.committed[i].peeq) ++yielded;
+      }
+    }
+  }
+  EXPECT_GT(yielded, 0);  // both material branches were compared
+}
 
 TEST(ExplicitSpeed, FusedBulkViscosityIsTheSeparateForce) {
   std::mt19937 rng(5);
@@ -84,6 +177,35 @@ TEST(ExplicitSpeed, ChainPassWithViscosityIsThreadIndependent) {
     SystemEvaluation c;
     serial.evaluate(u, false, c);
     EXPECT_EQ(c.viscous_force.size(), 0);
+  }
+}
+
+// Two threads deal the elements of a force-only pass (work_dealer.hpp): an element that fails
+// on either thread (here an inverted one, its geometry re-derived after the commit) is an
+// exception on the caller, as on one thread — not a thread waiting forever for the other.
+TEST(ExplicitSpeed, DealtPassReportsAnInvertedElement) {
+  ChainInput in;
+  in.rings = 2;
+  in.mesh.elements_around = 8;
+  in.joints = JointKind::Free;
+  in.integration = Integration::Selective;
+  for (int threads : {1, 2}) {
+    in.threads = threads;
+    ChainModel model(in);
+    const auto& mesh = model.mesh();
+    for (int bad : {0, static_cast<int>(mesh.elements.size()) - 1}) {  // first and last: both halves
+      ChainModel m(in);
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(m.dofs());
+      // Mid-side node 5 (edge 1–2) pushed twice across the element, beyond node 7 (edge 3–4).
+      const auto& conn = mesh.elements[bad];
+      const Eigen::Vector2d push = 2.0 * (mesh.nodes[conn[6]] - mesh.nodes[conn[4]]);
+      u(2 * conn[4]) = push.x();
+      u(2 * conn[4] + 1) = push.y();
+      SystemEvaluation out;
+      m.evaluate(u, false, out);  // on the reference geometry: finite
+      m.commit(u);
+      EXPECT_THROW(m.evaluate(u, false, out), std::runtime_error) << threads << " threads, element " << bad;
+    }
   }
 }
 
