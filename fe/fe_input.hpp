@@ -54,7 +54,9 @@ struct ContactInput {
   // 0 = no smoothing; must lie in [0, 0.5).
   double smoothing = 0.25;
   bool self_contact = true;  // inner wall against itself (lock-up)
-  // Both inner halves act as slave and as master (symmetric, no one-sided penetration).
+  // Symmetric, no one-sided penetration: RingContact (static) runs both halves as slave and
+  // as master; the chain model runs every inner node against the whole inner wall
+  // (ring_pair_contact.hpp). false: the lower half on the upper only.
   bool self_contact_two_pass = true;
   // Inner-wall points closer than this (reference arc angle) are joined by the wall itself
   // and never paired. 0.2 rad (11.5°, about three wall thicknesses of inner arc at t/D 0.03):

@@ -210,17 +210,16 @@ ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, 
 std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
                                            double k_scale, double width, double smoothing,
                                            double min_separation, double taper_band, bool two_pass) {
-  // Lower (y < 0) and upper (y > 0) halves of the inner wall, reference configuration, as
-  // RingContact does for one ring.
-  auto lower = [](double phi) { return -std::cos(phi) < -1e-12; };
-  auto upper = [](double phi) { return -std::cos(phi) > 1e-12; };
   const auto& segs = ring.inner_segments;
-  auto make = [&](auto slave_pred, auto master_pred) {
+  auto base = [&] {
     ContactPass p;
     p.self = true;
     p.slave_ring = p.master_ring = ring_index;
     p.min_separation = min_separation;
     p.taper_band = taper_band;
+    return p;
+  };
+  auto add_slaves = [&](ContactPass& p, auto slave_pred) {
     for (std::size_t i = 0; i < ring.inner_nodes.size(); ++i) {
       const int node = ring.inner_nodes[i];
       if (!slave_pred(ring.node_angle[node])) continue;
@@ -229,40 +228,61 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
       p.slave_area.push_back(ring.inner_weight[i] * width);
       p.slave_angle.push_back(ring.node_angle[node]);
     }
-    // Maximal runs of consecutive segments whose middle node is in the master half.
-    const std::size_t n = segs.size();
-    auto in_set = [&](std::size_t s) { return master_pred(ring.node_angle[segs[s].nodes[1]]); };
-    std::size_t start = 0;
-    if (!ring.half_ring)
-      for (std::size_t s = 0; s < n; ++s)
-        if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
-    std::vector<std::vector<SurfaceSegment>> runs;
-    std::vector<SurfaceSegment> cur;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t s = (start + i) % n;
-      if (in_set(s)) cur.push_back(segs[s]);
-      else if (!cur.empty()) { runs.push_back(cur); cur.clear(); }
-    }
-    if (!cur.empty()) runs.push_back(cur);
-    for (auto& run : runs) {
-      const bool lo_sym = ring.half_ring && std::abs(ring.nodes[run.front().nodes[0]].x()) < 1e-14;
-      const bool hi_sym = ring.half_ring && std::abs(ring.nodes[run.back().nodes[2]].x()) < 1e-14;
-      const std::size_t first = p.pieces.size();
-      add_chain(run, false, lo_sym, hi_sym, smoothing, p);
-      for (std::size_t q = first; q < p.pieces.size(); ++q) {
-        std::array<double, 5> ang{};
-        for (int a = 0; a < p.pieces[q].count; ++a) {
-          ang[a] = ring.node_angle[p.pieces[q].nodes[a]];
-          p.pieces[q].nodes[a] = map[p.pieces[q].nodes[a]];
-        }
-        p.piece_angle.push_back(ang);
+  };
+  // A run of consecutive segments as master pieces (closed: the whole wall of a full ring),
+  // with the reference angles of their nodes, then the nodes mapped to global ids.
+  auto add_master = [&](ContactPass& p, const std::vector<SurfaceSegment>& run, bool closed) {
+    const bool lo_sym = !closed && ring.half_ring && std::abs(ring.nodes[run.front().nodes[0]].x()) < 1e-14;
+    const bool hi_sym = !closed && ring.half_ring && std::abs(ring.nodes[run.back().nodes[2]].x()) < 1e-14;
+    const std::size_t first = p.pieces.size();
+    add_chain(run, closed, lo_sym, hi_sym, smoothing, p);
+    for (std::size_t q = first; q < p.pieces.size(); ++q) {
+      std::array<double, 5> ang{};
+      for (int a = 0; a < p.pieces[q].count; ++a) {
+        ang[a] = ring.node_angle[p.pieces[q].nodes[a]];
+        p.pieces[q].nodes[a] = map[p.pieces[q].nodes[a]];
       }
+      p.piece_angle.push_back(ang);
     }
-    return p;
   };
   std::vector<ContactPass> out;
-  out.push_back(make(lower, upper));
-  if (two_pass) out.push_back(make(upper, lower));
+  if (two_pass) {
+    // Symmetric (no master/slave bias, issue 4 item 2): every inner node, the side point C
+    // included, is a slave against the whole inner wall, one C¹ surface through C; only its
+    // own neighbourhood of the wall is left out (the exclusion and its taper). Each touching
+    // pair of wall points is then seen from both sides, as the former two half passes did
+    // away from C; but the former split at C (lower half y < 0 on the upper y > 0 and back)
+    // left the node at C (y = 0) a slave of neither, ended both master surfaces at C (a
+    // node whose closest point ran past C lost its whole force at once) and never paired two
+    // points of the same half, however far apart along the wall (README "FE dynamics",
+    // stability matrix; tests/fe/side_point_contact_test.cpp).
+    ContactPass p = base();
+    add_slaves(p, [](double) { return true; });
+    add_master(p, segs, !ring.half_ring);
+    out.push_back(std::move(p));
+    return out;
+  }
+  // One-sided (two_pass = false): the lower half's nodes (y < 0) against the upper half
+  // (y > 0) only, as RingContact's first pass; kept for tests that need a pure slave.
+  auto lower = [](double phi) { return -std::cos(phi) < -1e-12; };
+  auto upper = [](double phi) { return -std::cos(phi) > 1e-12; };
+  ContactPass p = base();
+  add_slaves(p, lower);
+  // Maximal runs of consecutive segments whose middle node is in the upper half.
+  const std::size_t n = segs.size();
+  auto in_set = [&](std::size_t s) { return upper(ring.node_angle[segs[s].nodes[1]]); };
+  std::size_t start = 0;
+  if (!ring.half_ring)
+    for (std::size_t s = 0; s < n; ++s)
+      if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
+  std::vector<SurfaceSegment> cur;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t s = (start + i) % n;
+    if (in_set(s)) cur.push_back(segs[s]);
+    else if (!cur.empty()) { add_master(p, cur, false); cur.clear(); }
+  }
+  if (!cur.empty()) add_master(p, cur, false);
+  out.push_back(std::move(p));
   return out;
 }
 

@@ -7,8 +7,9 @@
 // junction).
 //
 // Symmetry (no master/slave bias): ring↔ring contact is two passes, i's nodes on j's surface
-// and j's nodes on i's, with the same penalty rule on both sides; the inner wall is two
-// passes as RingContact (lower half on upper and upper on lower).
+// and j's nodes on i's, with the same penalty rule on both sides; on the inner wall every
+// node, the side point C included, is a slave against the whole wall (one C¹ surface through
+// C) less its own neighbourhood, so each touching pair is seen from both sides.
 //
 // Broad phase (pairs that cannot touch cost nothing): a Verlet candidate list of
 // (slave node, master piece) pairs, built from padded bounding boxes with a skin and rebuilt
@@ -59,7 +60,9 @@ struct ContactPass {
 ContactPass outer_pass(const RingMesh& ring, const std::vector<int>& slave_map, int slave,
                        const std::vector<int>& master_map, int master, double k_scale, double width,
                        double smoothing);
-// The two inner-wall passes of one ring (as RingContact: lower half against upper and back).
+// The inner-wall pass of one ring: two_pass (ContactInput::self_contact_two_pass, the
+// default) every inner node against the whole inner wall, symmetric; otherwise the lower
+// half's nodes (y < 0) against the upper half only, as RingContact's first pass (one-sided).
 // min_separation: ContactInput::self_contact_min_separation_rad; taper_band: the arc over
 // which the penalty ramps up beyond it (kSelfContactTaperBandRad, self_contact_taper.hpp).
 std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vector<int>& map, int ring_index,
