@@ -18,12 +18,13 @@
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/contact/self_contact_taper.hpp"
+#include "flattened_ring.hpp"
 
 using namespace ringcrush::fe;
 
 namespace {
 
-constexpr double kS = 0.05;  // flattening of the ring (y → s·y)
+constexpr double kS = fixture::kFlattening;
 
 struct Fold {
   ChainTopology t;
@@ -36,19 +37,10 @@ struct Fold {
 };
 
 Fold make_fold(double taper_band) {
-  ChainInput in;
-  in.rings = 1;
-  in.mesh.elements_around = 16;
-  in.mesh.half_ring = true;
-  in.joints = JointKind::Free;
-  Fold fo{make_chain_topology(in), {}, -1, 0, 0, 0, {}};
-  const ChainTopology& t = fo.t;
-  const double k_scale = in.material.youngs_modulus_pa * in.ring.width_m / t.ring.element_depth;
   // One pass (lower nodes on the upper wall): the moved node is then only a slave.
-  fo.passes = inner_wall_passes(t.ring, t.ring_node[0], 0, k_scale, in.ring.width_m, in.contact.smoothing,
-                                in.contact.self_contact_min_separation_rad, taper_band, false);
-  fo.x = t.mesh.nodes;
-  for (auto& p : fo.x) p.y() *= kS;
+  fixture::FlattenedRing f = fixture::make_flattened_ring(taper_band, false);
+  Fold fo{std::move(f.t), std::move(f.x), -1, 0, f.r, 0, std::move(f.passes)};
+  const ChainTopology& t = fo.t;
   const double half_pi = 0.5 * std::numbers::pi;
   for (std::size_t i = 0; i < t.ring.inner_nodes.size(); ++i) {
     const int node = t.ring.inner_nodes[i];
@@ -56,7 +48,6 @@ Fold make_fold(double taper_band) {
     if (phi < half_pi - 1e-9 && (fo.slave < 0 || phi > half_pi - fo.a)) {
       fo.slave = node;
       fo.a = half_pi - phi;
-      fo.r = t.ring.nodes[node].norm();
     }
   }
   const ContactPass& pass = fo.passes.front();
@@ -67,11 +58,7 @@ Fold make_fold(double taper_band) {
 
 // The slave p inside the upper leg at arc b past C: the flattened leg (r cos b, s r sin b)
 // and its normal into the leg's material.
-Eigen::Vector2d slave_position(const Fold& fo, double b, double p) {
-  const Eigen::Vector2d on_leg(fo.r * std::cos(b), kS * fo.r * std::sin(b));
-  const Eigen::Vector2d into(kS * std::cos(b), std::sin(b));
-  return on_leg + p * into.normalized();
-}
+Eigen::Vector2d slave_position(const Fold& fo, double b, double p) { return fixture::inside_flattened_wall(fo.r, b, p); }
 
 struct Contact {
   Eigen::Vector2d slave_force = Eigen::Vector2d::Zero();

@@ -19,38 +19,16 @@
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/contact/self_contact_taper.hpp"
+#include "flattened_ring.hpp"
 
 using namespace ringcrush::fe;
 
 namespace {
 
-constexpr double kS = 0.05;  // flattening of the ring (y → s·y)
+using Fold = fixture::FlattenedRing;
 
-struct Fold {
-  ChainTopology t;
-  std::vector<Eigen::Vector2d> x;  // the flattened ring
-  std::vector<ContactPass> passes;
-  double r = 0;                    // inner radius
-  double k_scale = 0;              // penalty per unit tributary length
-};
-
-Fold make_fold() {
-  ChainInput in;
-  in.rings = 1;
-  in.mesh.elements_around = 16;
-  in.mesh.half_ring = true;
-  in.joints = JointKind::Free;
-  Fold fo{make_chain_topology(in), {}, {}, 0, 0};
-  const RingMesh& ring = fo.t.ring;
-  fo.k_scale = in.contact.penalty_scale * in.material.youngs_modulus_pa * in.ring.width_m / ring.element_depth;
-  fo.passes = inner_wall_passes(ring, fo.t.ring_node[0], 0, fo.k_scale, in.ring.width_m, in.contact.smoothing,
-                                in.contact.self_contact_min_separation_rad, kSelfContactTaperBandRad,
-                                in.contact.self_contact_two_pass);
-  fo.x = fo.t.mesh.nodes;
-  for (auto& p : fo.x) p.y() *= kS;
-  fo.r = ring.nodes[ring.inner_nodes.front()].norm();
-  return fo;
-}
+// The default passes (both directions), the chain model's.
+Fold make_fold() { return fixture::make_flattened_ring(kSelfContactTaperBandRad, ChainInput{}.contact.self_contact_two_pass); }
 
 // The inner node nearest the reference angle φ (local id) and its penalty k = k_scale · w.
 struct InnerNode {
@@ -75,11 +53,7 @@ InnerNode inner_node_at(const Fold& fo, double phi) {
 // A point a depth p inside the wall at parameter b of the flattened inner surface: b > 0 on
 // the upper leg (arc b past C), b < 0 on the lower leg; the ellipse's outward normal points
 // into the wall's material.
-Eigen::Vector2d inside_wall(const Fold& fo, double b, double p) {
-  const Eigen::Vector2d on_wall(fo.r * std::cos(b), kS * fo.r * std::sin(b));
-  const Eigen::Vector2d into(kS * std::cos(b), std::sin(b));
-  return on_wall + p * into.normalized();
-}
+Eigen::Vector2d inside_wall(const Fold& fo, double b, double p) { return fixture::inside_flattened_wall(fo.r, b, p); }
 
 struct Contact {
   // Contact force on the moved node as a slave, −∂E/∂x_s (ContactContribution::force is the
