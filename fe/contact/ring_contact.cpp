@@ -166,25 +166,7 @@ RingContact::RingContact(const RingMesh& mesh, const ContactInput& input, double
     return y < -1e-12;
   };
   auto upper = [&](double phi) { return -std::cos(phi) > 1e-12; };
-  const auto& segs = mesh.inner_segments;
-  auto chains = [&](auto pred) {
-    std::vector<std::vector<SurfaceSegment>> out;
-    const std::size_t n = segs.size();
-    auto in_set = [&](std::size_t s) { return pred(mesh.node_angle[segs[s].nodes[1]]); };
-    // Start at a segment whose predecessor is not in the set (ring may wrap).
-    std::size_t start = 0;
-    if (!mesh.half_ring)
-      for (std::size_t s = 0; s < n; ++s)
-        if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
-    std::vector<SurfaceSegment> cur;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t s = (start + i) % n;
-      if (in_set(s)) cur.push_back(segs[s]);
-      else if (!cur.empty()) { out.push_back(cur); cur.clear(); }
-    }
-    if (!cur.empty()) out.push_back(cur);
-    return out;
-  };
+  auto chains = [&](auto pred) { return inner_wall_runs(mesh, pred); };
   auto make_pass = [&](auto slave_pred, auto master_pred) {
     Pass p;
     for (std::size_t i = 0; i < mesh.inner_nodes.size(); ++i) {

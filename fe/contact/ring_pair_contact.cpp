@@ -268,20 +268,7 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
   auto upper = [](double phi) { return -std::cos(phi) > 1e-12; };
   ContactPass p = base();
   add_slaves(p, lower);
-  // Maximal runs of consecutive segments whose middle node is in the upper half.
-  const std::size_t n = segs.size();
-  auto in_set = [&](std::size_t s) { return upper(ring.node_angle[segs[s].nodes[1]]); };
-  std::size_t start = 0;
-  if (!ring.half_ring)
-    for (std::size_t s = 0; s < n; ++s)
-      if (in_set(s) && !in_set((s + n - 1) % n)) { start = s; break; }
-  std::vector<SurfaceSegment> cur;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t s = (start + i) % n;
-    if (in_set(s)) cur.push_back(segs[s]);
-    else if (!cur.empty()) { add_master(p, cur, false); cur.clear(); }
-  }
-  if (!cur.empty()) add_master(p, cur, false);
+  for (const auto& run : inner_wall_runs(ring, upper)) add_master(p, run, false);
   out.push_back(std::move(p));
   return out;
 }

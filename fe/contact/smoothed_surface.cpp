@@ -69,4 +69,23 @@ std::vector<CurvePiece> smoothed_chain(const std::vector<SurfaceSegment>& chain,
   return out;
 }
 
+std::vector<std::vector<SurfaceSegment>> inner_wall_runs(const RingMesh& ring, const std::function<bool(double)>& in_set) {
+  const auto& segs = ring.inner_segments;
+  const std::size_t n = segs.size();
+  auto member = [&](std::size_t s) { return in_set(ring.node_angle[segs[s].nodes[1]]); };
+  std::size_t start = 0;
+  if (!ring.half_ring)
+    for (std::size_t s = 0; s < n; ++s)
+      if (member(s) && !member((s + n - 1) % n)) { start = s; break; }
+  std::vector<std::vector<SurfaceSegment>> out;
+  std::vector<SurfaceSegment> cur;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t s = (start + i) % n;
+    if (member(s)) cur.push_back(segs[s]);
+    else if (!cur.empty()) { out.push_back(cur); cur.clear(); }
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
 }  // namespace ringcrush::fe

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "fe/mesh/ring_mesh.hpp"
@@ -35,5 +36,11 @@ inline double surface_speed(const CurvePiece& p) { return p.count == 5 ? 2 * p.a
 
 // Pieces of one counter-clockwise chain of consecutive segments (shared end nodes).
 std::vector<CurvePiece> smoothed_chain(const std::vector<SurfaceSegment>& chain, double alpha);
+
+// Maximal runs of consecutive inner-wall segments of `ring` whose middle node's reference
+// angle φ satisfies `in_set` (the master surfaces of a self-contact pass on part of the wall).
+// A full ring's wall is a loop, so the runs start at a segment whose predecessor is out of the
+// set and one run may cross the segment list's start.
+std::vector<std::vector<SurfaceSegment>> inner_wall_runs(const RingMesh& ring, const std::function<bool(double)>& in_set);
 
 }  // namespace ringcrush::fe
