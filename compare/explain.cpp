@@ -120,6 +120,11 @@ std::vector<std::string> explain_hinge(const Scene& s) {
                     ? std::string("Level 3: a ring under a wrap flows in the bottom mechanism only (hinge.level3_ring_under)")
                     : std::string("Level 3: a ring under a wrap flows in the least-load of bottom and E-C-B, E fixed where "
                                   "it forms (hinge.level3_ring_under)"));
+  if (s.hinge.level == "3")
+    e.push_back(s.hinge.level3_inertia
+                    ? std::string("Level 3: rings with mass (centre mass, J(phi) in the uniform mode), a force per ring from the "
+                                  "dynamics; no statics check (hinge.level3_inertia)")
+                    : std::string("Level 3: massless chain, one force through every ring (hinge.level3_inertia)"));
   e.push_back("the FE model is not built by the hinge run");
   return e;
 }

@@ -40,6 +40,8 @@ hinge::Level3Input level3_input(const Scene& scene, const Level3RunOptions& extr
   in.ring_under = scene.hinge.level3_ring_under == HingeSettings::Level3RingUnder::Bottom
                       ? hinge::Level3RingUnder::Bottom
                       : hinge::Level3RingUnder::LeastLoad;
+  in.inertia = scene.hinge.level3_inertia;
+  in.ring_mass_kg = law.mass_kg;
   return in;
 }
 
@@ -198,6 +200,8 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
              {"hinge_F", in.theta_f >= 0 ? "fixed" : hinge::to_string(in.hinge_f)},
              {"theta_F_final_deg", theta_f_final(res) * 180.0 / std::numbers::pi},
              {"hinge_E", hinge::to_string(in.hinge_e)},
+             {"ring_inertia", in.inertia},
+             {"impact_loss_J", res.impact_loss_j},
              {"ring_under", hinge::to_string(in.ring_under)},
              {"moment_ratio_max", moment_ratio},
              {"collapse_load_N", ring.collapse_load()},

@@ -413,6 +413,7 @@ Scene parse_scene(const std::string& text, const std::string& file) {
         "level3_ring_under",
         {{"bottom", HingeSettings::Level3RingUnder::Bottom}, {"least_load", HingeSettings::Level3RingUnder::LeastLoad}},
         h.level3_ring_under);
+    h.level3_inertia = r.boolean("level3_inertia", h.level3_inertia);
     require(h.level3_theta_f_deg < 0 || (h.level3_theta_f_deg > 90 && h.level3_theta_f_deg < 180), r,
             "level3_theta_f_deg",
             fmt::format("{} must lie in (90, 180) (or be negative: F placed by level3_hinge_f)", h.level3_theta_f_deg));

@@ -129,6 +129,8 @@ struct HingeSettings {
   // Level 3 ring under a wrap: the bottom mechanism only, or the least load of bottom and
   // E–C–B at every event (hinge/level3_ecb.hpp).
   enum class Level3RingUnder { Bottom, LeastLoad } level3_ring_under = Level3RingUnder::LeastLoad;
+  // Level 3 ring inertia (hinge/level3_inertia.cpp): false, the massless chain (one force F).
+  bool level3_inertia = false;
 };
 
 struct Outputs {

@@ -145,6 +145,11 @@ struct Level3Input {
   double theta_e = 0.7853981633974483;  // edge of the held cap (reported only)
   Level3HingeE hinge_e = Level3HingeE::Fixed;  // E of the flowing E–C–B: chosen once, at the reinforcement
   Level3RingUnder ring_under = Level3RingUnder::LeastLoad;
+  // Ring inertia (hinge/level3_inertia.cpp): false, the massless chain above (one common F);
+  // true, each ring's mass m_r at its centre and, in the Uniform mode, Level 1's distributed
+  // inertia J(φ), a force per ring from the dynamics (needs ring_mass_kg > 0).
+  bool inertia = false;
+  double ring_mass_kg = 0.0;  // m_r of the whole ring (Level 1's RingLaw::mass_kg)
   void validate() const;
 };
 
@@ -189,6 +194,10 @@ struct Level3History {
   std::vector<double> time_s, impactor_displacement_m, impactor_velocity_m_s, force_n;
   std::vector<std::vector<double>> ring_crush_m;  // [ring][sample]
   std::vector<double> kinetic_j, plastic_j;
+  // With ring inertia only (empty otherwise): the kinetic energy lost in plastic impacts so
+  // far, and the force carried by each ring [ring][sample] (compression > 0).
+  std::vector<double> impact_loss_j;
+  std::vector<std::vector<double>> ring_force_n;
   // [sample][ring] the mechanism state of each ring (crushes, angles, curvature, mode; no
   // hinge list or work), enough for level3_ring_shape: the shapes over time.
   std::vector<std::vector<Level3RingResult>> ring_state;
@@ -211,11 +220,16 @@ struct Level3Result {
   double initial_kinetic_energy_j = 0.0;
   double plastic_work_closed_form_j = 0.0;  // Σ mechanism works from the final state
   double lock_loss_j = 0.0;                 // kinetic energy lost if the whole chain locks
-  double energy_balance_error() const;      // max |KE + Dp + lock − KE0| / KE0
+  double impact_loss_j = 0.0;               // with inertia: plastic impacts and mode switches
+  double energy_balance_error() const;      // max |KE + Dp + lock + impacts − KE0| / KE0
 };
 
 Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options,
                              bool record_history = true);
+// The chain with ring inertia (in.inertia; hinge/level3_inertia.cpp); simulate_level3
+// dispatches to it.
+Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions& options,
+                                      bool record_history = true);
 
 // Mean line of ring i's half (θ ∈ [0, π], 2 + 4·n points) in chain coordinates: ring top
 // at y = top_y; the state of a Level3RingResult. Points as {x, y}; angles in `theta`.

@@ -1,0 +1,456 @@
+// Level 3 with ring inertia (issue 7 item 2, THEORY §4.4 "Level 1" and §4.5): the Level 3
+// chain of the thesis's few-hinge mechanisms (§4.2.3: Uniform DeRuntz–Hodge, Wrap of the arc
+// C–F–B, Bottom, E–C–B; their laws, tables and hardening exactly as the massless chain uses
+// them, hinge/level3_chain.hpp) whose rings have mass, so that each ring carries its own force
+// from the dynamics instead of one common F.
+//
+// Generalised coordinates: the ring crushes δ_i (fixed target). Body b (impactor b = 0, the
+// joint between ring b and b + 1) moves at u̇_b = Σ_{j≥b} δ̇_j; ring i's mass m_r sits at its
+// centre, ẇ_i = ½ δ̇_i + Σ_{j>i} δ̇_j, as in Level 1. The mechanism's own distributed
+// inertia: in the Uniform mode Level 1's J(φ) (THEORY §1.3), in δ the generalised mass
+// μ(δ) = J(φ)/(d cos φ)²; in the Wrap, Bottom and E–C–B modes it is neglected (μ = 0: only the
+// centre translates; a stated simplification — the kinetic energy ½μδ̇² of a ring leaving the
+// Uniform mode while it crushes is booked as an impact loss). With constant body
+// coefficients Lagrange's equations are
+//
+//   𝓜(δ) δ̈ = −½ μ′(δ_i) δ̇_i² e_i − λ,   𝓜 = M 11ᵀ + m_r Σ_i w_i w_iᵀ + diag μ_i,
+//
+// λ_i = P_i (the load of ring i's current mechanism) while ring i crushes (δ̇_i > 0); a
+// rigid ring has δ̇_i = 0 and a reaction λ_i up to the least load of its admissible
+// mechanisms; a locked ring (every mechanism at its limit) any λ_i ≥ 0. Which rings crush is
+// the complementarity problem of Level 1 (hinge/mass_lcp.hpp) at events; the first contact,
+// and a ring locking while it moves, are plastic impacts whose losses are booked.
+//
+// Mode selection by least load, per ring: a rigid ring starts crushing in its admissible
+// mechanism of least load when its force reaches that load; a crushing ring switches when
+// another admissible mechanism of its own becomes cheaper than the current one (e.g. the
+// wrap, whose load falls, against the hardening uniform mechanism). The wrap of ring i
+// reinforces ring i + 1 (Bottom, or E–C–B when cheaper by the massless chain's margin).
+// The massless chain's lower-bound statics check (hinge/level3_statics.hpp) assumes one
+// force through each ring in equilibrium; with inertia the ring's two contact forces differ,
+// so it is not run here (the moment ratios stay 0).
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <stdexcept>
+
+#include "chain_1d.hpp"
+#include "level3_chain.hpp"
+#include "mass_lcp.hpp"
+
+namespace ringcrush::hinge {
+namespace {
+
+using level3_detail::kE;
+using level3_detail::kL;
+using level3_detail::kM;
+using level3_detail::kU;
+using level3_detail::kW;
+
+enum class RingMotion { Crushing, Rigid, Locked };
+
+class Level3InertialChain final : public level3_detail::Level3Chain {
+ public:
+  Level3InertialChain(const Level3Input& in, WrapMechanism wrap)
+      : Level3Chain(in, std::move(wrap)), base_size_(static_cast<int>(Level3Chain::size())) {
+    law_.outer_diameter_m = in.ring.outer_diameter_m;
+    law_.wall_thickness_m = in.ring.wall_thickness_m;
+    law_.mass_kg = in.ring_mass_kg;
+    motion_.assign(n_, RingMotion::Rigid);
+    mech_.assign(n_, 0);
+    for (int i = 0; i < n_; ++i) {
+      mech_[i] = kM * i + kU;
+      strength_.push_back(1.0 + tie_break * i);
+    }
+    const auto n = static_cast<Eigen::Index>(n_);
+    m0_ = Eigen::MatrixXd::Constant(n, n, in.impactor_mass_kg);
+    Eigen::VectorXd w(n);
+    for (int i = 0; i < n_; ++i) {
+      for (int j = 0; j < n_; ++j) w(j) = j < i ? 0.0 : j == i ? 0.5 : 1.0;
+      m0_ += in.ring_mass_kg * w * w.transpose();
+    }
+    mm_ = m0_;
+    b_ = Eigen::VectorXd::Zero(n);
+    vref_ = in.impactor_velocity_m_s;
+  }
+
+  // As in Level 1 (chain_level1.cpp): identical rigid rings that reach their load at the same
+  // instant are told apart by a relative 1e-9·i, the ring nearer the impactor first.
+  static constexpr double tie_break = 1e-9;
+
+  std::size_t size() const override { return static_cast<std::size_t>(base_size_ + n_); }
+  std::size_t root_count() const override { return static_cast<std::size_t>(m_ + 2 * n_ + 1); }
+  int vel(int i) const { return base_size_ + i; }
+
+  // --- mechanics -------------------------------------------------------------------
+  double ring_load(const double* y, int j) const { return strength_[j / kM] * load(y, j); }
+  // Ring i's admissible mechanism of least load with travel left (−1: none); E–C–B replaces
+  // the bottom mechanism only when cheaper by half the massless chain's switch margin.
+  int least(const double* y, int i) const {
+    int best = -1;
+    double pbest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kM; ++k) {
+      const int j = kM * i + k;
+      if (!available(j) || margin(y, j) <= 1e-9 * d_) continue;
+      const double p = load(y, j) * (1.0 + 0.5 * switch_margin(j));
+      if (p < pbest) {
+        pbest = p;
+        best = j;
+      }
+    }
+    return best;
+  }
+  bool uniform_inertia(int i) const { return mech_[i] % kM == kU && !wrap_started_[i] && !reinforced_[i]; }
+  // μ_i = J(φ)/(d cos φ)² and dμ/dδ in the Uniform mode (δ = d sin φ), 0 otherwise.
+  void own_mass(const double* y, int i, double& mu, double& dmu) const {
+    mu = dmu = 0.0;
+    if (!uniform_inertia(i) || in_.ring_mass_kg == 0.0) return;
+    const double phi = uniform_phi(y, i), c = std::cos(phi), s = std::sin(phi), dc = d_ * c;
+    const double J = law_.inertia(phi), Jp = law_.inertia_derivative(phi);
+    mu = J / (dc * dc);
+    dmu = (Jp / (dc * dc) + 2.0 * J * s / (dc * dc * c)) / dc;
+  }
+  void assemble(const double* y) {
+    mm_ = m0_;
+    b_.setZero();
+    for (int i = 0; i < n_; ++i) {
+      double mu, dmu;
+      own_mass(y, i, mu, dmu);
+      const double v = y[vel(i)];
+      mm_(i, i) += mu;
+      b_(i) -= 0.5 * dmu * v * v;
+    }
+  }
+  double kinetic(const double* y) {
+    assemble(y);
+    const Eigen::Map<const Eigen::VectorXd> v(y + base_size_, n_);
+    return 0.5 * v.dot(mm_ * v);
+  }
+  // Accelerations and ring forces in the current motions (after assemble()).
+  void accelerations(const double* y) {
+    r_ = b_;
+    lambda_.setZero(n_);
+    free_.clear();
+    for (int i = 0; i < n_; ++i)
+      if (motion_[i] == RingMotion::Crushing) {
+        lambda_(i) = ring_load(y, mech_[i]);
+        r_(i) -= lambda_(i);
+        free_.push_back(i);
+      }
+    qdd_.setZero(n_);
+    const auto nf = static_cast<Eigen::Index>(free_.size());
+    if (nf > 0) {
+      mf_.resize(nf, nf);
+      rf_.resize(nf);
+      for (Eigen::Index a = 0; a < nf; ++a) {
+        rf_(a) = r_(free_[a]);
+        for (Eigen::Index c = 0; c < nf; ++c) mf_(a, c) = mm_(free_[a], free_[c]);
+      }
+      rf_ = mf_.llt().solve(rf_);
+      for (Eigen::Index a = 0; a < nf; ++a) qdd_(free_[a]) = rf_(a);
+    }
+    for (int i = 0; i < n_; ++i)
+      if (motion_[i] != RingMotion::Crushing) lambda_(i) = r_(i) - mm_.row(i).dot(qdd_);
+  }
+
+  void rhs(double, const double* y, double* f) override {
+    std::fill(f, f + size(), 0.0);
+    assemble(y);
+    accelerations(y);
+    f[0] = y[1];
+    for (int i = 0; i < n_; ++i) {
+      const double v = y[vel(i)];
+      f[vel(i)] = qdd_(i);
+      f[1] += qdd_(i);
+      if (motion_[i] == RingMotion::Crushing) {
+        f[state(mech_[i])] += v;
+        f[3] += lambda_(i) * v;
+      }
+    }
+  }
+  void residual(double t, const double* y, const double* yp, double* r) override {
+    rhs(t, y, r);
+    for (std::size_t k = 0; k < size(); ++k) r[k] = yp[k] - r[k];
+  }
+
+  // Roots. Slot j = kM·i + k of ring i: crushing in j, its travel left (limit); crushing in
+  // another, load_j − load_current (a cheaper mechanism); rigid, load_j − λ_i (the ring
+  // starts to crush). [m + 2i]: crushing ring's rate (it stops); [m + 2i + 1]: a rigid or
+  // locked ring's force (tension). Last: the impactor's velocity (arrest).
+  void event_roots(double, const double* y, double* g) override {
+    assemble(y);
+    accelerations(y);
+    std::fill(g, g + root_count(), 1.0);
+    for (int i = 0; i < n_; ++i) {
+      const int m = mech_[i];
+      if (motion_[i] == RingMotion::Locked) {
+        g[m_ + 2 * i + 1] = lambda_(i) / p0_;
+        continue;
+      }
+      const bool crushing = motion_[i] == RingMotion::Crushing;
+      const double reference = crushing ? ring_load(y, m) : lambda_(i);
+      for (int k = 0; k < kM; ++k) {
+        const int j = kM * i + k;
+        if (crushing && j == m) g[j] = margin(y, j) / d_;
+        else if (available(j) && margin(y, j) > 1e-9 * d_)
+          g[j] = std::clamp((ring_load(y, j) - reference * (1.0 - switch_margin(j))) / p0_, -1e3, 1e3);
+      }
+      if (crushing) g[m_ + 2 * i] = y[vel(i)] / vref_;
+      else g[m_ + 2 * i + 1] = lambda_(i) / p0_;
+    }
+    g[m_ + 2 * n_] = y[1] / vref_;
+  }
+  // Every ring root heads away from zero after a restart (Level 1's convention): a margin,
+  // a mechanism left for a cheaper one, a rigid ring's margin below its load or its force.
+  int root_departure(std::size_t r, int fired) const override {
+    if (r == static_cast<std::size_t>(m_ + 2 * n_)) return fired != 0 ? fired : (arrest_time_ < 0.0 ? 1 : 0);
+    return 1;
+  }
+  bool finished(double, const double*) override { return false; }
+
+  // --- events ----------------------------------------------------------------------
+  // Ring i takes mechanism j (it crushes in it, or it is its least load while rigid): the
+  // hinge and wrap bookkeeping of the massless chain's select().
+  void take(double t, std::vector<double>& y, int i, int j) {
+    mech_[i] = j;
+    if (motion_[i] != RingMotion::Crushing) return;
+    if (first_[j] < 0) {
+      first_[j] = t;
+      events_.push_back({t, "hinge_formed", i,
+                         fmt::format("{} mechanism at P = {:.1f} N", to_string(static_cast<Level3Mode>(j % kM)),
+                                     ring_load(y.data(), j))});
+    }
+    if (j % kM == kW && !wrap_started_[i]) {
+      wrap_started_[i] = true;
+      reinforced_[i + 1] = true;
+      psi0_[i + 1] = uniform_phi(y.data(), i + 1);
+      if (in_.hinge_e == Level3HingeE::ShearFree) theta_e_[i + 1] = shear_free_e(y.data(), i);
+      events_.push_back({t, "mode_selected", i,
+                         fmt::format("wrap over ring {} (wrap load {:.1f} N <= uniform {:.1f} N)", i + 2,
+                                     load(y.data(), j), load(y.data(), kM * i + kU))});
+      retake(t, y, i + 1);
+    }
+    if (j % kM == kE && !ecb_started_[i]) switch_to_ecb(t, y, i);
+  }
+  // Ring i's mechanism after its current one left (limit, or no longer admissible).
+  void retake(double t, std::vector<double>& y, int i) {
+    if (motion_[i] == RingMotion::Locked) return;
+    const int k = least(y.data(), i);
+    if (k < 0) {
+      motion_[i] = RingMotion::Locked;
+      events_.push_back({t, "ring_locked", i, "no admissible mechanism with travel left"});
+      return;
+    }
+    if (k != mech_[i] || first_[k] < 0) take(t, y, i, k);
+  }
+
+  EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
+    double* s = y.data();
+    const double ke_before = kinetic(s);
+    std::vector<char> loaded(n_, 0);
+    for (int i = 0; i < n_; ++i) {
+      if (fired[m_ + 2 * i + 1] < 0 && motion_[i] != RingMotion::Crushing)
+        throw std::runtime_error(fmt::format(
+            "Level 3 with inertia: ring {} would carry tension at t = {:.9g} s; contact separation is "
+            "not modelled at Level 3", i + 1, t));
+      const int m = mech_[i];
+      if (motion_[i] == RingMotion::Rigid) {
+        for (int k = 0; k < kM; ++k) loaded[i] = loaded[i] || fired[kM * i + k] != 0;
+        continue;
+      }
+      if (motion_[i] != RingMotion::Crushing) continue;
+      if (fired[m] != 0 && margin(s, m) <= 1e-9 * d_) {
+        locked_[m] = true;
+        events_.push_back({t, "ring_locked", i,
+                           fmt::format("{} mechanism at its limit", to_string(static_cast<Level3Mode>(m % kM)))});
+        retake(t, y, i);
+      } else {
+        bool cheaper = false;
+        for (int k = 0; k < kM; ++k) cheaper = cheaper || (kM * i + k != m && fired[kM * i + k] != 0);
+        if (cheaper) retake(t, y, i);
+      }
+      if (motion_[i] == RingMotion::Crushing && fired[m_ + 2 * i] < 0) {
+        s[vel(i)] = 0.0;
+        motion_[i] = RingMotion::Rigid;
+        events_.push_back({t, "ring_stopped", i, "crush rate fell to zero"});
+      }
+    }
+    if (fired[m_ + 2 * n_] < 0 && arrest_time_ < 0.0) {
+      arrest_time_ = t;
+      events_.push_back({t, "impactor_arrested", -1, "impactor at rest"});
+    }
+    settle(t, y, loaded);
+    impact_loss_ += ke_before - kinetic(s);
+    for (int i = 0; i < n_; ++i)
+      if (motion_[i] == RingMotion::Crushing) return EventAction::Continue;
+    if (arrest_time_ < 0.0) arrest_time_ = t;
+    events_.push_back({t, "chain_at_rest", -1, "no ring crushes"});
+    return EventAction::Stop;
+  }
+
+  // Plastic impact of the rings that locked while moving, then the acceleration-level
+  // selection; the impactor velocity state follows the rings'.
+  void settle(double t, std::vector<double>& y, const std::vector<char>& loaded) {
+    for (int i = 0; i < n_; ++i)
+      if (motion_[i] == RingMotion::Locked && y[vel(i)] != 0.0) {
+        apply_impact(t, y);
+        break;
+      }
+    select_motions(t, y, loaded);
+    y[1] = 0.0;
+    for (int i = 0; i < n_; ++i) y[1] += y[vel(i)];
+  }
+
+  // Perfectly plastic impact (Level 1): the velocities after it minimise the kinetic energy
+  // of the velocity change subject to δ̇ ≥ 0, δ̇ = 0 for locked rings.
+  void apply_impact(double t, std::vector<double>& y) {
+    assemble(y.data());
+    Eigen::Map<Eigen::VectorXd> v(y.data() + base_size_, n_);
+    const Eigen::VectorXd p = mm_ * v;
+    std::vector<char> comp(n_, 1), zero(n_, 0);
+    for (int i = 0; i < n_; ++i) zero[i] = motion_[i] == RingMotion::Locked;
+    const auto lcp = solve_mass_lcp(mm_, p, comp, zero);
+    v = lcp.x;
+    for (int i = 0; i < n_; ++i) {
+      if (motion_[i] == RingMotion::Locked) continue;
+      if (lcp.held[i]) {
+        v(i) = 0.0;
+        motion_[i] = RingMotion::Rigid;
+      } else if (motion_[i] != RingMotion::Crushing) {
+        motion_[i] = RingMotion::Crushing;
+        take(t, y, i, mech_[i]);
+      }
+    }
+  }
+
+  // Acceleration-level complementarity for the rings at rest (Level 1's select_modes): each
+  // crushes in its least-load mechanism (δ̈ ≥ 0, λ = P) or stays rigid (δ̈ = 0, λ ≤ P). A
+  // wrap that starts changes the ring underneath, so the problem is solved again.
+  void select_motions(double t, std::vector<double>& y, const std::vector<char>& loaded) {
+    for (int pass = 0; pass < 4; ++pass) {
+      const double* s = y.data();
+      std::vector<char> comp(n_, 0), zero(n_, 0);
+      for (int i = 0; i < n_; ++i) {
+        if (motion_[i] == RingMotion::Rigid) {
+          const int k = least(s, i);
+          if (k < 0) motion_[i] = RingMotion::Locked;
+          else mech_[i] = k;
+        }
+      }
+      assemble(s);
+      Eigen::VectorXd r = b_;
+      for (int i = 0; i < n_; ++i) {
+        if (motion_[i] == RingMotion::Locked) {
+          zero[i] = 1;
+          continue;
+        }
+        r(i) -= ring_load(s, mech_[i]);
+        comp[i] = motion_[i] == RingMotion::Rigid || s[vel(i)] <= 0.0;
+      }
+      std::vector<char> prefer(n_, 0);
+      for (int i = 0; i < n_ && !loaded.empty(); ++i) prefer[i] = loaded[i];
+      const auto lcp = solve_mass_lcp(mm_, r, comp, zero, prefer);
+      bool changed = false;
+      for (int i = 0; i < n_; ++i) {
+        if (!comp[i]) continue;
+        if (lcp.held[i]) {
+          motion_[i] = RingMotion::Rigid;
+          y[vel(i)] = 0.0;
+        } else if (motion_[i] != RingMotion::Crushing) {
+          motion_[i] = RingMotion::Crushing;
+          events_.push_back({t, "ring_crushing", i, "least mechanism load reached"});
+          const bool wrapped = i + 1 < n_ && reinforced_[i + 1];
+          take(t, y, i, mech_[i]);
+          changed = changed || (i + 1 < n_ && reinforced_[i + 1] != wrapped);
+        }
+      }
+      if (!changed) break;
+    }
+  }
+
+  // First contact: the impactor's momentum M V shared by a plastic impact (Level 1).
+  std::vector<double> initial_state() {
+    std::vector<double> y(size(), 0.0);
+    assemble(y.data());
+    const Eigen::VectorXd p = Eigen::VectorXd::Constant(n_, in_.impactor_mass_kg * in_.impactor_velocity_m_s);
+    const auto lcp = solve_mass_lcp(mm_, p, std::vector<char>(n_, 1), std::vector<char>(n_, 0));
+    for (int i = 0; i < n_; ++i) {
+      y[vel(i)] = lcp.held[i] ? 0.0 : lcp.x(i);
+      mech_[i] = std::max(least(y.data(), i), kM * i + kU);
+      motion_[i] = lcp.held[i] ? RingMotion::Rigid : RingMotion::Crushing;
+    }
+    for (int i = 0; i < n_; ++i)
+      if (motion_[i] == RingMotion::Crushing) take(0.0, y, i, mech_[i]);
+    const double v0 = in_.impactor_velocity_m_s;
+    impact_loss_ = 0.5 * in_.impactor_mass_kg * v0 * v0 - kinetic(y.data());
+    const double ke = kinetic(y.data());
+    select_motions(0.0, y, {});
+    impact_loss_ += ke - kinetic(y.data());
+    y[1] = 0.0;
+    for (int i = 0; i < n_; ++i) y[1] += y[vel(i)];
+    return y;
+  }
+
+  bool moving() const {
+    for (auto m : motion_)
+      if (m == RingMotion::Crushing) return true;
+    return false;
+  }
+
+  // The massless chain's record with the inertial chain's kinetic energy, impactor force
+  // (M times its deceleration), impact losses and ring forces.
+  void record_state(double t, const std::vector<double>& y, Level3History& h) {
+    record(t, y, h);
+    assemble(y.data());
+    accelerations(y.data());
+    h.kinetic_j.back() = kinetic(y.data());
+    h.force_n.back() = -in_.impactor_mass_kg * qdd_.sum();
+    h.impact_loss_j.push_back(impact_loss_);
+    h.ring_force_n.resize(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) h.ring_force_n[static_cast<std::size_t>(i)].push_back(lambda_(i));
+  }
+
+  double impact_loss() const { return impact_loss_; }
+
+ private:
+  int base_size_;
+  RingLaw law_;
+  std::vector<RingMotion> motion_;
+  std::vector<int> mech_;  // ring i's current mechanism slot (kM·i + mode)
+  std::vector<double> strength_;
+  double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
+  Eigen::MatrixXd m0_, mm_, mf_;
+  Eigen::VectorXd b_, r_, rf_, qdd_, lambda_;
+  std::vector<Eigen::Index> free_;
+};
+
+}  // namespace
+
+Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions& options, bool record_history) {
+  in.validate();
+  if (!in.inertia) throw std::invalid_argument("simulate_level3_inertial: Level3Input::inertia is false");
+  Level3Result res;
+  res.wrap = level3_detail::level3_wrap_for(in);
+  res.theta_f = res.wrap.theta_f;
+  Level3InertialChain chain(in, res.wrap);
+  res.initial_kinetic_energy_j = 0.5 * in.impactor_mass_kg * in.impactor_velocity_m_s * in.impactor_velocity_m_s;
+  std::vector<double> y = chain.initial_state();
+  std::vector<double> last;
+  double t_last = 0.0;
+  if (chain.moving()) {
+    res.outcome = run_hybrid(chain, 0.0, y, options, [&](double t, const std::vector<double>& s) {
+      if (record_history || res.history.time_s.empty()) chain.record_state(t, s, res.history);
+      last = s;
+      t_last = t;
+    });
+    if (!record_history && !last.empty()) chain.record_state(t_last, last, res.history);
+  } else {
+    chain.record_state(0.0, y, res.history);
+  }
+  chain.finish(y, res);
+  res.impact_loss_j = chain.impact_loss();
+  return res;
+}
+
+}  // namespace ringcrush::hinge

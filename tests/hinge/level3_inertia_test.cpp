@@ -1,0 +1,127 @@
+// Level 3 with ring inertia (hinge/level3_inertia.cpp; issue 7 item 2): the few-hinge chain
+// with each ring's mass, a force per ring from the dynamics. Checks: the energy balance,
+// Level 1 recovered when only the Uniform mode can flow, the massless chain recovered as the
+// ring mass tends to zero, and the bad inputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "chain_fixtures.hpp"
+#include "compare/hinge_run_level3.hpp"
+#include "hinge/level3_mechanism.hpp"
+
+using namespace ringcrush;
+using namespace ringcrush::hinge;
+
+namespace {
+
+// Test 30's ring (chain_fixtures.hpp) as a Level 3 ring with the same M0, k and mass.
+Level3Input test30_level3(double velocity, bool plates) {
+  const RingLaw law = testing::test30_ring();
+  Level3Input in;
+  in.rings = 6;
+  in.ring = {law.outer_diameter_m, law.wall_thickness_m, law.plastic_moment_nm, law.hardening_k()};
+  in.plates = plates;
+  in.impactor_mass_kg = 0.257;
+  in.impactor_velocity_m_s = velocity;
+  in.inertia = true;
+  in.ring_mass_kg = law.mass_kg;
+  return in;
+}
+
+}  // namespace
+
+// Kinetic + plastic work + plastic-impact losses = ½MV² along the whole history, with the
+// wrap, the ring underneath and the locks all in play (welded, 27.7 and 50 m/s).
+TEST(Level3Inertia, EnergyBalance) {
+  for (double v : {27.7, 50.0}) {
+    const auto r = simulate_level3(test30_level3(v, false), testing::tight(HybridIntegrator::Ida));
+    ASSERT_GT(r.history.time_s.size(), 10u);
+    EXPECT_LE(r.energy_balance_error(), 1e-6) << v << " m/s";
+    EXPECT_GT(r.impact_loss_j, 0.0);  // the first contact is a plastic impact
+    EXPECT_LT(r.impact_loss_j, r.initial_kinetic_energy_j);
+    EXPECT_LE(r.history.impactor_velocity_m_s.back(), 1e-6 * v);
+    for (const auto& rr : r.rings) EXPECT_TRUE(std::isfinite(rr.crush_m));
+  }
+}
+
+// With only the Uniform mode admissible (plated joints: no ring can wrap) the chain is Level 1
+// on the same inputs (plates of zero mass): DeRuntz–Hodge/Redwood rings with J(φ), written in
+// δ here and in φ there — the final crush per ring agrees to 1e-6 (relative to d).
+TEST(Level3Inertia, UniformOnlyEqualsLevel1) {
+  for (double v : {27.7, 45.0}) {
+    auto c1 = testing::test30_chain(ChainJoint::Plates);
+    c1.plate_mass_kg = 0.0;
+    c1.impactor_velocity_m_s = v;
+    const auto l1 = simulate_level1(c1, testing::tight(HybridIntegrator::Ida));
+    const auto in = test30_level3(v, true);
+    const auto l3 = simulate_level3(in, testing::tight(HybridIntegrator::Ida));
+    ASSERT_EQ(l1.final_crush_m.size(), l3.rings.size());
+    const double d = in.ring.mean_diameter();
+    for (std::size_t i = 0; i < l3.rings.size(); ++i) {
+      EXPECT_NEAR(l3.rings[i].crush_m / d, l1.final_crush_m[i] / d, 1e-6) << v << " m/s, ring " << i + 1;
+      EXPECT_EQ(l3.rings[i].mode, Level3Mode::Uniform);
+    }
+  }
+}
+
+// Ring mass → 0 tends to the massless chain: the largest difference of final crush per ring
+// falls as m_r does (the inertial forces scale with m_r), below 2 % of d at m_r/1000.
+TEST(Level3Inertia, MasslessLimit) {
+  auto in = test30_level3(27.7, false);
+  auto massless = in;
+  massless.inertia = false;
+  const auto ref = simulate_level3(massless, testing::tight(HybridIntegrator::Ida));
+  const double d = in.ring.mean_diameter(), m = in.ring_mass_kg;
+  std::vector<double> worst;
+  for (double scale : {1e-2, 1e-3}) {
+    in.ring_mass_kg = m * scale;
+    const auto r = simulate_level3(in, testing::tight(HybridIntegrator::Ida));
+    double w = 0.0;
+    for (std::size_t i = 0; i < r.rings.size(); ++i)
+      w = std::max(w, std::abs(r.rings[i].crush_m - ref.rings[i].crush_m) / d);
+    worst.push_back(w);
+    EXPECT_LE(r.energy_balance_error(), 1e-6) << scale;
+  }
+  EXPECT_LT(worst[1], worst[0]);
+  EXPECT_LT(worst[1], 0.02);
+}
+
+// Bad input: inertia without a ring mass, a negative or NaN mass — errors naming the value;
+// the scene key takes true | false only, and reaches the run.
+TEST(Level3Inertia, BadInput) {
+  auto in = test30_level3(27.7, false);
+  in.ring_mass_kg = 0.0;
+  EXPECT_THROW(simulate_level3(in, testing::tight(HybridIntegrator::Ida)), std::invalid_argument);
+  in.ring_mass_kg = -1.0;
+  in.inertia = false;
+  try {
+    in.validate();
+    ADD_FAILURE() << "accepted ring_mass_kg = -1";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("ring_mass_kg = -1"), std::string::npos) << e.what();
+  }
+  in.ring_mass_kg = std::nan("");
+  EXPECT_THROW(in.validate(), std::invalid_argument);
+
+  std::ifstream f(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  std::stringstream buf;
+  buf << f.rdbuf();
+  const std::string scene = buf.str();
+  const auto pos = scene.find("[hinge]");
+  ASSERT_NE(pos, std::string::npos);
+  auto text = [&](const std::string& line) { return scene.substr(0, pos + 7) + "\n" + line + scene.substr(pos + 7); };
+  const auto on = compare::parse_scene(text("level3_inertia = true"), "t30.toml");
+  EXPECT_TRUE(compare::level3_input(on, {}).inertia);
+  EXPECT_GT(compare::level3_input(on, {}).ring_mass_kg, 0.0);
+  EXPECT_FALSE(compare::level3_input(compare::parse_scene(scene, "t30.toml"), {}).inertia);  // the default
+  try {
+    compare::parse_scene(text("level3_inertia = \"yes\""), "bad.toml");
+    ADD_FAILURE() << "accepted level3_inertia = \"yes\"";
+  } catch (const compare::SceneError& e) {
+    EXPECT_NE(e.key().find("level3_inertia"), std::string::npos) << e.key();
+  }
+}
