@@ -109,6 +109,8 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
   r.elastic_j.assign(n, 0.0);
   r.contact_j.assign(n, 0.0);
   if (n > 0) r.contact_j.back() = res.lock_loss_j;  // kinetic energy lost if the chain locks
+  // With ring inertia: the kinetic energy lost in plastic impacts (first contact, locks).
+  for (std::size_t k = 0; k < n && k < h.impact_loss_j.size(); ++k) r.contact_j[k] += h.impact_loss_j[k];
   r.numerical_j.assign(n, 0.0);
   r.external_work_j.assign(n, 0.0);
 

@@ -350,7 +350,17 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
       }
       std::vector<char> prefer(n_, 0);
       for (int i = 0; i < n_ && !loaded.empty(); ++i) prefer[i] = loaded[i];
-      const auto lcp = solve_mass_lcp(mm_, r, comp, zero, prefer);
+      // A tie (a ring at its load with zero acceleration) goes to crushing, as in Level 1;
+      // but solve_mass_lcp measures a free ring's degeneracy as x_i·𝓜_ii and a held one's as
+      // μ_i, which differ by 𝓜_ii/S_i (S_i the Schur complement), and with light rings behind
+      // a heavy impactor 𝓜 is nearly rank one (M 11ᵀ), so both tests can fail in turn and the
+      // pivoting cycles. Then the tie is left to the events (held; its root fires again).
+      MassLcpResult lcp;
+      try {
+        lcp = solve_mass_lcp(mm_, r, comp, zero, prefer);
+      } catch (const std::runtime_error&) {
+        lcp = solve_mass_lcp(mm_, r, comp, zero);
+      }
       bool changed = false;
       for (int i = 0; i < n_; ++i) {
         if (!comp[i]) continue;

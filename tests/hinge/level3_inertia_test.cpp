@@ -20,7 +20,7 @@ namespace {
 
 // Test 30's ring (chain_fixtures.hpp) as a Level 3 ring with the same M0, k and mass.
 Level3Input test30_level3(double velocity, bool plates) {
-  const RingLaw law = testing::test30_ring();
+  const RingLaw law = hinge::testing::test30_ring();
   Level3Input in;
   in.rings = 6;
   in.ring = {law.outer_diameter_m, law.wall_thickness_m, law.plastic_moment_nm, law.hardening_k()};
@@ -38,7 +38,7 @@ Level3Input test30_level3(double velocity, bool plates) {
 // wrap, the ring underneath and the locks all in play (welded, 27.7 and 50 m/s).
 TEST(Level3Inertia, EnergyBalance) {
   for (double v : {27.7, 50.0}) {
-    const auto r = simulate_level3(test30_level3(v, false), testing::tight(HybridIntegrator::Ida));
+    const auto r = simulate_level3(test30_level3(v, false), hinge::testing::tight(HybridIntegrator::Ida));
     ASSERT_GT(r.history.time_s.size(), 10u);
     EXPECT_LE(r.energy_balance_error(), 1e-6) << v << " m/s";
     EXPECT_GT(r.impact_loss_j, 0.0);  // the first contact is a plastic impact
@@ -53,12 +53,12 @@ TEST(Level3Inertia, EnergyBalance) {
 // δ here and in φ there — the final crush per ring agrees to 1e-6 (relative to d).
 TEST(Level3Inertia, UniformOnlyEqualsLevel1) {
   for (double v : {27.7, 45.0}) {
-    auto c1 = testing::test30_chain(ChainJoint::Plates);
+    auto c1 = hinge::testing::test30_chain(ChainJoint::Plates);
     c1.plate_mass_kg = 0.0;
     c1.impactor_velocity_m_s = v;
-    const auto l1 = simulate_level1(c1, testing::tight(HybridIntegrator::Ida));
+    const auto l1 = simulate_level1(c1, hinge::testing::tight(HybridIntegrator::Ida));
     const auto in = test30_level3(v, true);
-    const auto l3 = simulate_level3(in, testing::tight(HybridIntegrator::Ida));
+    const auto l3 = simulate_level3(in, hinge::testing::tight(HybridIntegrator::Ida));
     ASSERT_EQ(l1.final_crush_m.size(), l3.rings.size());
     const double d = in.ring.mean_diameter();
     for (std::size_t i = 0; i < l3.rings.size(); ++i) {
@@ -69,17 +69,18 @@ TEST(Level3Inertia, UniformOnlyEqualsLevel1) {
 }
 
 // Ring mass → 0 tends to the massless chain: the largest difference of final crush per ring
-// falls as m_r does (the inertial forces scale with m_r), below 2 % of d at m_r/1000.
+// falls as m_r does (measured, of d: 0.049 at Test 30's m_r, 0.0073 at m_r/10, 0.0023 at
+// m_r/30, 0.0005 at m_r/100, 0.0002 at m_r/300; the massless chain 0.6081 every ring).
 TEST(Level3Inertia, MasslessLimit) {
   auto in = test30_level3(27.7, false);
   auto massless = in;
   massless.inertia = false;
-  const auto ref = simulate_level3(massless, testing::tight(HybridIntegrator::Ida));
+  const auto ref = simulate_level3(massless, hinge::testing::tight(HybridIntegrator::Ida));
   const double d = in.ring.mean_diameter(), m = in.ring_mass_kg;
   std::vector<double> worst;
-  for (double scale : {1e-2, 1e-3}) {
+  for (double scale : {1e-1, 1e-2}) {
     in.ring_mass_kg = m * scale;
-    const auto r = simulate_level3(in, testing::tight(HybridIntegrator::Ida));
+    const auto r = simulate_level3(in, hinge::testing::tight(HybridIntegrator::Ida));
     double w = 0.0;
     for (std::size_t i = 0; i < r.rings.size(); ++i)
       w = std::max(w, std::abs(r.rings[i].crush_m - ref.rings[i].crush_m) / d);
@@ -87,7 +88,7 @@ TEST(Level3Inertia, MasslessLimit) {
     EXPECT_LE(r.energy_balance_error(), 1e-6) << scale;
   }
   EXPECT_LT(worst[1], worst[0]);
-  EXPECT_LT(worst[1], 0.02);
+  EXPECT_LT(worst[1], 2e-3);
 }
 
 // Bad input: inertia without a ring mass, a negative or NaN mass — errors naming the value;
@@ -95,7 +96,7 @@ TEST(Level3Inertia, MasslessLimit) {
 TEST(Level3Inertia, BadInput) {
   auto in = test30_level3(27.7, false);
   in.ring_mass_kg = 0.0;
-  EXPECT_THROW(simulate_level3(in, testing::tight(HybridIntegrator::Ida)), std::invalid_argument);
+  EXPECT_THROW(simulate_level3(in, hinge::testing::tight(HybridIntegrator::Ida)), std::invalid_argument);
   in.ring_mass_kg = -1.0;
   in.inertia = false;
   try {
