@@ -215,7 +215,14 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
              {"arrest_time_s", arrest >= 0 ? nlohmann::json(arrest) : nlohmann::json()},
              {"mechanisms", mech},
              {"hinge_map", hinge_map},
-             {"note", "massless rigid-plastic chain (ring inertia neglected); mode = least-load admissible mechanism"}};
+             {"note", in.inertia ? "rigid-plastic chain with ring inertia (a force per ring); mode = least-load admissible "
+                                   "mechanism per ring"
+                                 : "massless rigid-plastic chain (ring inertia neglected); mode = least-load admissible mechanism"}};
+  if (in.inertia) {  // the largest force each ring carried (against the wrap onset load)
+    nlohmann::json peaks = nlohmann::json::array();
+    for (const auto& f : h.ring_force_n) peaks.push_back(f.empty() ? 0.0 : *std::max_element(f.begin(), f.end()));
+    r.extra["ring_force_peak_N"] = peaks;
+  }
   return r;
 }
 

@@ -147,7 +147,8 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
         rf_(a) = r_(free_[a]);
         for (Eigen::Index c = 0; c < nf; ++c) mf_(a, c) = mm_(free_[a], free_[c]);
       }
-      rf_ = mf_.llt().solve(rf_);
+      llt_.compute(mf_);
+      rf_ = llt_.solve(rf_);
       for (Eigen::Index a = 0; a < nf; ++a) qdd_(free_[a]) = rf_(a);
     }
     for (int i = 0; i < n_; ++i)
@@ -432,6 +433,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m0_, mm_, mf_;
   Eigen::VectorXd b_, r_, rf_, qdd_, lambda_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
   std::vector<Eigen::Index> free_;
 };
 
