@@ -383,7 +383,7 @@ void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eige
   for (int a = 0; a < q.count; ++a) { xy[2 + 2 * a] = x[q.nodes[a]].x(); xy[3 + 2 * a] = x[q.nodes[a]].y(); }
   const Cubic cubic(poly, xy);
   std::copy(&cubic.a[0][0], &cubic.a[0][0] + 8, &pc.a[0][0]);
-  curve_box(poly, cubic, pc.box);
+  if (passes_[pass].symmetric_end[piece]) curve_box(poly, cubic, pc.box);  // only they use it
   // The chord frame: t from the end at lo to the end at hi; a piece shrunk to a point
   // (never on a valid mesh) gets the x–y frame, whose box is then the x–y box.
   double pos0[2], pos1[2], tan[2], curv[2];
