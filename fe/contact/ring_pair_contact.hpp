@@ -18,6 +18,13 @@
 // on when the list was built: the list is a superset of what the test can accept. A pass
 // whose rings' padded boxes do not overlap (ring i and ring i+3, or ring i and i+2 before a
 // wrap-around) adds nothing to the list.
+//
+// Narrow phase (issue 4 performance; tests/fe/contact_search_test.cpp): a slave's candidate
+// pieces are projected nearest-first by a lower bound of their |gap| — the distance to the
+// piece's box in the frame of its chord, which hugs a slanted piece where an x–y box does not
+// — and no further once the bound reaches the best |gap| found; each piece's cubic and box
+// are formed once per evaluation, whichever slaves ask. The closest owned piece, and so every
+// contribution, is bitwise that of projecting every slave on every piece (test).
 #pragma once
 
 #include <Eigen/Core>
@@ -130,8 +137,8 @@ class SurfaceContact {
   // Candidates: pass p, slave s → candidate_piece_[start_[p][s] .. start_[p][s + 1]).
   std::vector<std::vector<int>> start_;
   // Per pass, the slaves with at least one candidate, ascending (the evaluation visits only
-  // these: most slaves of most passes have none, and scanning them all was a third of the
-  // pass's own time, perf).
+  // these, in the order of the full scan: most slaves have none, and of the thesis chain's
+  // 36 passes the 20 between rings that are not neighbours hold none until a wrap-around).
   std::vector<std::vector<int>> near_slaves_;
   std::vector<int> candidate_piece_;
   std::vector<std::vector<double>> slave_omega2_;  // per pass, per slave
