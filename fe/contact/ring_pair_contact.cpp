@@ -15,6 +15,7 @@ namespace {
 // geometric polynomial x(f) = A0 + A1 f + A2 f² + A3 f³.
 struct Cubic {
   double a[4][2];
+  explicit Cubic(const double (&coefficients)[4][2]) { std::copy(&coefficients[0][0], &coefficients[0][0] + 8, &a[0][0]); }
   Cubic(const PiecePolynomial& p, const double* xy) {
     for (int q = 0; q < 4; ++q) {
       a[q][0] = a[q][1] = 0;
@@ -33,36 +34,81 @@ struct Cubic {
   }
 };
 
+// Range [lo, hi] over f ∈ [p_lo, p_hi] of the cubic c0 + c1 f + c2 f² + c3 f³ (ends and the
+// interior extrema).
+void cubic_range(double c0, double c1, double c2, double c3, double p_lo, double p_hi, double& lo, double& hi) {
+  auto value = [&](double f) { return c0 + f * (c1 + f * (c2 + f * c3)); };
+  lo = std::min(value(p_lo), value(p_hi));
+  hi = std::max(value(p_lo), value(p_hi));
+  auto consider = [&](double f) {
+    if (f > p_lo && f < p_hi) {
+      const double v = value(f);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  };
+  // x'(f) = a1 + 2 a2 f + 3 a3 f² = 0
+  const double a = 3 * c3, b = 2 * c2, k = c1;
+  if (std::abs(a) > 1e-12 * (std::abs(b) + std::abs(k))) {
+    const double disc = b * b - 4 * a * k;
+    if (disc >= 0) {
+      const double r = std::sqrt(disc);
+      consider((-b + r) / (2 * a));
+      consider((-b - r) / (2 * a));
+    }
+  } else if (b != 0) {
+    consider(-k / b);
+  }
+}
+
 // Bounding box {lo x, hi x, lo y, hi y} of the curve itself over [lo, hi] (ends and the
 // interior extrema of each coordinate's cubic): an exact lower bound of the distance from
 // a point to the piece is its distance to this box.
-void curve_box(const PiecePolynomial& p, const double* xy, double* box) {
-  const Cubic c(p, xy);
-  for (int d = 0; d < 2; ++d) {
-    auto value = [&](double f) { return c.a[0][d] + f * (c.a[1][d] + f * (c.a[2][d] + f * c.a[3][d])); };
-    double lo = std::min(value(p.lo), value(p.hi)), hi = std::max(value(p.lo), value(p.hi));
-    auto consider = [&](double f) {
-      if (f > p.lo && f < p.hi) {
-        const double v = value(f);
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    };
-    // x'(f) = a1 + 2 a2 f + 3 a3 f² = 0
-    const double a = 3 * c.a[3][d], b = 2 * c.a[2][d], k = c.a[1][d];
-    if (std::abs(a) > 1e-12 * (std::abs(b) + std::abs(k))) {
-      const double disc = b * b - 4 * a * k;
-      if (disc >= 0) {
-        const double r = std::sqrt(disc);
-        consider((-b + r) / (2 * a));
-        consider((-b - r) / (2 * a));
-      }
-    } else if (b != 0) {
-      consider(-k / b);
+void curve_box(const PiecePolynomial& p, const Cubic& c, double* box) {
+  for (int d = 0; d < 2; ++d) cubic_range(c.a[0][d], c.a[1][d], c.a[2][d], c.a[3][d], p.lo, p.hi, box[2 * d], box[2 * d + 1]);
+}
+void curve_box(const PiecePolynomial& p, const double* xy, double* box) { curve_box(p, Cubic(p, xy), box); }
+
+// Closest point of (xs, ys) on the cubic (surface_gap's iteration; the cubic formed once per
+// piece and evaluation by SurfaceContact).
+bool closest_point(const Cubic& cubic, double p_lo, double p_hi, double xs, double ys, unsigned char symmetric_end,
+                   bool strict, double& f, double& gap) {
+  // strict = false: the piece's polynomial continues past its ends (it matches the C¹
+  // neighbour to second order), for finite differences about an accepted closest point.
+  const double lo = strict ? p_lo : p_lo - 0.5, hi = strict ? p_hi : p_hi + 0.5;
+  double pos[2], tan[2], curv[2];
+  if (!(f >= lo && f <= hi)) {
+    double best = 1e300;
+    for (int s = 0; s <= 4; ++s) {
+      const double t = p_lo + (p_hi - p_lo) * s / 4.0;
+      cubic.at(t, pos, tan, curv);
+      const double d2 = (pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys);
+      if (d2 < best) { best = d2; f = t; }
     }
-    box[2 * d] = lo;
-    box[2 * d + 1] = hi;
   }
+  // Newton on (x(f) − x_s)·x'(f) = 0.
+  for (int it = 0; it < 30; ++it) {
+    cubic.at(f, pos, tan, curv);
+    const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
+    const double dr = tan[0] * tan[0] + tan[1] * tan[1] + (pos[0] - xs) * curv[0] + (pos[1] - ys) * curv[1];
+    const double step = dr > 0 ? -r / dr : (r > 0 ? -0.25 : 0.25) * (p_hi - p_lo);
+    const double next = std::clamp(f + step, lo, hi);
+    const double moved = std::abs(next - f);
+    f = next;
+    if (moved < 1e-14) break;
+  }
+  cubic.at(f, pos, tan, curv);
+  const double tl = std::sqrt(tan[0] * tan[0] + tan[1] * tan[1]);
+  if (!(tl > 0)) return false;
+  const double nx = -tan[1] / tl, ny = tan[0] / tl;
+  gap = (xs - pos[0]) * nx + (ys - pos[1]) * ny;
+  if (!strict) return true;
+  const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
+  const double scale = tl * std::sqrt((pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys));
+  const double tol = 1e-9 * (p_hi - p_lo);
+  if (f <= p_lo + tol && r > 1e-9 * scale && !(symmetric_end & 1)) return false;  // minimum before the piece
+  if (f >= p_hi - tol && r < -1e-9 * scale && !(symmetric_end & 2)) return false;  // minimum after it
+  return true;
 }
 
 // A pieces chain from segments; closed: the last segment joins the first (full ring).
@@ -115,44 +161,7 @@ PiecePolynomial::PiecePolynomial(const CurvePiece& piece) : count(piece.count), 
 
 bool surface_gap(const PiecePolynomial& p, const double* xy, unsigned char symmetric_end, bool strict, double& f,
                  double& gap) {
-  const Cubic cubic(p, xy);
-  // strict = false: the piece's polynomial continues past its ends (it matches the C¹
-  // neighbour to second order), for finite differences about an accepted closest point.
-  const double lo = strict ? p.lo : p.lo - 0.5, hi = strict ? p.hi : p.hi + 0.5;
-  const double xs = xy[0], ys = xy[1];
-  double pos[2], tan[2], curv[2];
-  if (!(f >= lo && f <= hi)) {
-    double best = 1e300;
-    for (int s = 0; s <= 4; ++s) {
-      const double t = p.lo + (p.hi - p.lo) * s / 4.0;
-      cubic.at(t, pos, tan, curv);
-      const double d2 = (pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys);
-      if (d2 < best) { best = d2; f = t; }
-    }
-  }
-  // Newton on (x(f) − x_s)·x'(f) = 0.
-  for (int it = 0; it < 30; ++it) {
-    cubic.at(f, pos, tan, curv);
-    const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
-    const double dr = tan[0] * tan[0] + tan[1] * tan[1] + (pos[0] - xs) * curv[0] + (pos[1] - ys) * curv[1];
-    const double step = dr > 0 ? -r / dr : (r > 0 ? -0.25 : 0.25) * (p.hi - p.lo);
-    const double next = std::clamp(f + step, lo, hi);
-    const double moved = std::abs(next - f);
-    f = next;
-    if (moved < 1e-14) break;
-  }
-  cubic.at(f, pos, tan, curv);
-  const double tl = std::sqrt(tan[0] * tan[0] + tan[1] * tan[1]);
-  if (!(tl > 0)) return false;
-  const double nx = -tan[1] / tl, ny = tan[0] / tl;
-  gap = (xs - pos[0]) * nx + (ys - pos[1]) * ny;
-  if (!strict) return true;
-  const double r = (pos[0] - xs) * tan[0] + (pos[1] - ys) * tan[1];
-  const double scale = tl * std::sqrt((pos[0] - xs) * (pos[0] - xs) + (pos[1] - ys) * (pos[1] - ys));
-  const double tol = 1e-9 * (p.hi - p.lo);
-  if (f <= p.lo + tol && r > 1e-9 * scale && !(symmetric_end & 1)) return false;  // minimum before the piece
-  if (f >= p.hi - tol && r < -1e-9 * scale && !(symmetric_end & 2)) return false;  // minimum after it
-  return true;
+  return closest_point(Cubic(p, xy), p.lo, p.hi, xy[0], xy[1], symmetric_end, strict, f, gap);
 }
 
 void surface_force(const PiecePolynomial& p, const double* xy, double k, double f, double gap, double* force) {
@@ -286,11 +295,15 @@ SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
   tracked_.erase(std::unique(tracked_.begin(), tracked_.end()), tracked_.end());
   x_build_.resize(tracked_.size());
   start_.resize(passes_.size());
+  near_slaves_.resize(passes_.size());
   for (const auto& p : passes_) {
     auto& polys = poly_.emplace_back();
     for (const auto& q : p.pieces) polys.emplace_back(q);
-    box_.emplace_back(p.pieces.size());
-    box_stamp_.emplace_back(p.pieces.size(), 0u);
+    cache_.emplace_back(p.pieces.size());
+    auto& unwrapped = unwrapped_.emplace_back();
+    if (p.self)
+      for (std::size_t q = 0; q < p.pieces.size(); ++q)
+        unwrapped.push_back(unwrapped_piece_angles(p.piece_angle[q], p.pieces[q].count));
   }
   slave_omega2_.resize(passes_.size());
   for (std::size_t p = 0; p < passes_.size(); ++p) slave_omega2_[p].assign(passes_[p].slaves.size(), 0.0);
@@ -320,6 +333,7 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
     const ContactPass& p = passes_[pi];
     auto& start = start_[pi];
     start.assign(p.slaves.size() + 1, static_cast<int>(candidate_piece_.size()));
+    near_slaves_[pi].clear();
     box.resize(p.pieces.size());
     double m_lo_x = 1e300, m_hi_x = -1e300, m_lo_y = 1e300, m_hi_y = -1e300;
     for (std::size_t q = 0; q < p.pieces.size(); ++q) {
@@ -355,9 +369,35 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
         }
         candidate_piece_.push_back(static_cast<int>(q));
       }
+      if (static_cast<int>(candidate_piece_.size()) > start[s]) near_slaves_[pi].push_back(static_cast<int>(s));
     }
     start[p.slaves.size()] = static_cast<int>(candidate_piece_.size());
   }
+}
+
+void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eigen::Vector2d>& x) {
+  const CurvePiece& q = passes_[pass].pieces[piece];
+  const PiecePolynomial& poly = poly_[pass][piece];
+  PieceCache& pc = cache_[pass][piece];
+  double xy[12] = {};
+  for (int a = 0; a < q.count; ++a) { xy[2 + 2 * a] = x[q.nodes[a]].x(); xy[3 + 2 * a] = x[q.nodes[a]].y(); }
+  const Cubic cubic(poly, xy);
+  std::copy(&cubic.a[0][0], &cubic.a[0][0] + 8, &pc.a[0][0]);
+  if (passes_[pass].symmetric_end[piece]) curve_box(poly, cubic, pc.box);  // only they use it
+  // The chord frame: t from the end at lo to the end at hi; a piece shrunk to a point
+  // (never on a valid mesh) gets the x–y frame, whose box is then the x–y box.
+  double pos0[2], pos1[2], tan[2], curv[2];
+  cubic.at(poly.lo, pos0, tan, curv);
+  cubic.at(poly.hi, pos1, tan, curv);
+  const double cx = pos1[0] - pos0[0], cy = pos1[1] - pos0[1], chord = std::sqrt(cx * cx + cy * cy);
+  pc.t[0] = chord > 0 ? cx / chord : 1.0;
+  pc.t[1] = chord > 0 ? cy / chord : 0.0;
+  const double tx = pc.t[0], ty = pc.t[1];
+  auto along = [&](int k) { return cubic.a[k][0] * tx + cubic.a[k][1] * ty; };
+  auto across = [&](int k) { return cubic.a[k][1] * tx - cubic.a[k][0] * ty; };
+  cubic_range(along(0), along(1), along(2), along(3), poly.lo, poly.hi, pc.range[0], pc.range[1]);
+  cubic_range(across(0), across(1), across(2), across(3), poly.lo, poly.hi, pc.range[2], pc.range[3]);
+  pc.stamp = stamp_;
 }
 
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
@@ -375,8 +415,8 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
     const ContactPass& p = passes_[pi];
     const auto& start = start_[pi];
     const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
-    for (std::size_t s = 0; s < p.slaves.size(); ++s) {
-      if (start[s] == start[s + 1]) continue;
+    for (const int si : near_slaves_[pi]) {
+      const auto s = static_cast<std::size_t>(si);
       const int node = p.slaves[s];
       const Eigen::Vector2d& xs = x[node];
       int best = -1;
@@ -390,15 +430,16 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
       std::array<Near, 64> near;
       int count = 0;
       auto project = [&](int q) {
-        const CurvePiece& piece = p.pieces[q];
-        xy[0] = xs.x(); xy[1] = xs.y();
-        for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
-        double f = piece.lo - 1.0, gap = 0;
-        if (!surface_gap(poly_[pi][q], xy, p.symmetric_end[q], true, f, gap)) return;
+        const PiecePolynomial& poly = poly_[pi][q];
+        double f = poly.lo - 1.0, gap = 0;
+        // surface_gap() on the cubic formed once this evaluation (the same arithmetic).
+        if (!closest_point(Cubic(cache_[pi][q].a), poly.lo, poly.hi, xs.x(), xs.y(), p.symmetric_end[q], true, f, gap))
+          return;
         // Self contact: a closest point inside the exclusion is the slave's own wall, not a
         // partner (its weight is zero, so dropping it is continuous).
-        if (p.self && taper.weight(arc_to_closest_point(poly_[pi][q], p.piece_angle[static_cast<std::size_t>(q)],
-                                                        p.slave_angle[s], f, nullptr)) == 0)
+        const auto qi = static_cast<std::size_t>(q);
+        if (p.self && taper.weight(arc_to_closest_point(poly, p.piece_angle[qi], unwrapped_[pi][qi], p.slave_angle[s],
+                                                        f, nullptr)) == 0)
           return;
         // The closest owned piece decides (a node behind the wall of another piece is not
         // "penetrating" it).
@@ -406,16 +447,23 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
       };
       for (int c = start[s]; c < start[s + 1]; ++c) {
         const int q = candidate_piece_[c];
-        auto& cb = box_[pi][q];
-        if (box_stamp_[pi][q] != stamp_) {
-          const CurvePiece& piece = p.pieces[q];
-          for (int a = 0; a < piece.count; ++a) { xy[2 + 2 * a] = x[piece.nodes[a]].x(); xy[3 + 2 * a] = x[piece.nodes[a]].y(); }
-          curve_box(poly_[pi][q], xy, cb.data());
-          box_stamp_[pi][q] = stamp_;
+        PieceCache& pc = cache_[pi][q];
+        if (pc.stamp != stamp_) refresh(pi, q, x);
+        double bound = -1.0;
+        if (p.symmetric_end[q]) {
+          const double* cb = pc.box;
+          const double dx = std::max({cb[0] - xs.x(), 0.0, xs.x() - cb[1]}), dy = std::max({cb[2] - xs.y(), 0.0, xs.y() - cb[3]});
+          if (dx >= depth_ || dy >= depth_) continue;
+        } else {
+          // Distance to the chord-frame box: no more than the distance to the curve, which
+          // is |gap| at an accepted closest point; a piece at one depth or more can never be
+          // the closest within one depth.
+          const double along = xs.x() * pc.t[0] + xs.y() * pc.t[1], across = xs.y() * pc.t[0] - xs.x() * pc.t[1];
+          const double du = std::max({pc.range[0] - along, 0.0, along - pc.range[1]});
+          const double dv = std::max({pc.range[2] - across, 0.0, across - pc.range[3]});
+          if (du >= depth_ || dv >= depth_) continue;
+          bound = std::sqrt(du * du + dv * dv);
         }
-        const double dx = std::max({cb[0] - xs.x(), 0.0, xs.x() - cb[1]}), dy = std::max({cb[2] - xs.y(), 0.0, xs.y() - cb[3]});
-        if (dx >= depth_ || dy >= depth_) continue;
-        const double bound = p.symmetric_end[q] ? -1.0 : std::sqrt(dx * dx + dy * dy);
         if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
         else project(q);
       }

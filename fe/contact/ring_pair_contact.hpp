@@ -18,6 +18,13 @@
 // on when the list was built: the list is a superset of what the test can accept. A pass
 // whose rings' padded boxes do not overlap (ring i and ring i+3, or ring i and i+2 before a
 // wrap-around) adds nothing to the list.
+//
+// Narrow phase (issue 4 performance; tests/fe/contact_search_test.cpp): a slave's candidate
+// pieces are projected nearest-first by a lower bound of their |gap| — the distance to the
+// piece's box in the frame of its chord, which hugs a slanted piece where an x–y box does not
+// — and no further once the bound reaches the best |gap| found; each piece's cubic and box
+// are formed once per evaluation, whichever slaves ask. The closest owned piece, and so every
+// contribution, is bitwise that of projecting every slave on every piece (test).
 #pragma once
 
 #include <Eigen/Core>
@@ -118,6 +125,8 @@ class SurfaceContact {
 
  private:
   void rebuild(const std::vector<Eigen::Vector2d>& x);
+  // Forms cache_[pass][piece] at x for the current evaluation.
+  void refresh(std::size_t pass, int piece, const std::vector<Eigen::Vector2d>& x);
 
   std::vector<ContactPass> passes_;
   double depth_, skin_;
@@ -127,12 +136,30 @@ class SurfaceContact {
   long rebuilds_ = 0;
   // Candidates: pass p, slave s → candidate_piece_[start_[p][s] .. start_[p][s + 1]).
   std::vector<std::vector<int>> start_;
+  // Per pass, the slaves with at least one candidate, ascending (the evaluation visits only
+  // these, in the order of the full scan: most slaves have none, and of the thesis chain's
+  // 36 passes the 20 between rings that are not neighbours hold none until a wrap-around).
+  std::vector<std::vector<int>> near_slaves_;
   std::vector<int> candidate_piece_;
   std::vector<std::vector<double>> slave_omega2_;  // per pass, per slave
   std::vector<std::vector<PiecePolynomial>> poly_; // per pass, per piece
-  // Curve boxes of the current evaluation, computed once per piece (stamp = evaluation).
-  std::vector<std::vector<std::array<double, 4>>> box_;
-  std::vector<std::vector<unsigned>> box_stamp_;
+  // Self passes, per piece: its node angles unwrapped about its first (self_contact_taper.hpp).
+  std::vector<std::vector<std::array<double, 5>>> unwrapped_;
+  // What the current evaluation knows of a piece, formed once per piece and evaluation
+  // (stamp = evaluation), when a slave first needs it: its geometric cubic x(f) = Σ A_q f^q,
+  // and a box of the curve in the frame of its chord (t along, n across, the curve's range
+  // of x·t and x·n). The distance to that box is the lower bound of |gap| that orders the
+  // projections; a slanted piece's box in x and y is much wider than the curve, the chord
+  // frame's is not, so fewer projections are made (same closest piece). A piece ending on a
+  // symmetry plane keeps its x–y box (the filter of those pieces, whose gap is no distance).
+  struct PieceCache {
+    double a[4][2];
+    double box[4];          // x–y box of the curve (symmetry-plane pieces)
+    double t[2];            // chord direction (unit)
+    double range[4];        // lo, hi of x·t; lo, hi of x·n over the piece
+    unsigned stamp = 0;
+  };
+  std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
 };
 

@@ -38,8 +38,16 @@ double ArcTaper::weight(double delta, double* slope) const {
   return t * t * (3 - 2 * t);
 }
 
+std::array<double, 5> unwrapped_piece_angles(const std::array<double, 5>& piece_angle, int count) {
+  const double two_pi = 2 * std::numbers::pi;
+  std::array<double, 5> out{};
+  for (int a = 0; a < count; ++a)
+    out[static_cast<std::size_t>(a)] = std::remainder(piece_angle[static_cast<std::size_t>(a)] - piece_angle[0], two_pi);
+  return out;
+}
+
 double arc_to_closest_point(const PiecePolynomial& piece, const std::array<double, 5>& piece_angle,
-                            double slave_angle, double f, double* slope) {
+                            const std::array<double, 5>& unwrapped, double slave_angle, double f, double* slope) {
   const double two_pi = 2 * std::numbers::pi;
   double c[5], dc[5], ddc[5];
   shape(piece, f, c, dc, ddc);
@@ -48,13 +56,19 @@ double arc_to_closest_point(const PiecePolynomial& piece, const std::array<doubl
   const double first = std::remainder(piece_angle[0] - slave_angle, two_pi);
   double d = 0, dd = 0;
   for (int a = 0; a < piece.count; ++a) {
-    const double angle = first + std::remainder(piece_angle[static_cast<std::size_t>(a)] - piece_angle[0], two_pi);
+    const double angle = first + unwrapped[static_cast<std::size_t>(a)];
     d += c[a] * angle;
     dd += dc[a] * angle;
   }
   d = std::remainder(d, two_pi);
   if (slope) *slope = d < 0 ? -dd : dd;
   return std::abs(d);
+}
+
+double arc_to_closest_point(const PiecePolynomial& piece, const std::array<double, 5>& piece_angle,
+                            double slave_angle, double f, double* slope) {
+  return arc_to_closest_point(piece, piece_angle, unwrapped_piece_angles(piece_angle, piece.count), slave_angle, f,
+                              slope);
 }
 
 double tapered_self_force(const PiecePolynomial& p, const double* xy, double k, double f, double gap,

@@ -45,6 +45,12 @@ struct ArcTaper {
 // angles are piece_angle, and dΔ/df. Angles may wrap: each is taken relative to the slave.
 double arc_to_closest_point(const PiecePolynomial& piece, const std::array<double, 5>& piece_angle,
                             double slave_angle, double f, double* slope);
+// The same with the piece's node angles already unwrapped about its first node
+// (unwrapped_piece_angles; constant per piece, so a search that asks Δ for many slaves does
+// not redo the 2π reductions of the piece): bitwise the value above.
+std::array<double, 5> unwrapped_piece_angles(const std::array<double, 5>& piece_angle, int count);
+double arc_to_closest_point(const PiecePolynomial& piece, const std::array<double, 5>& piece_angle,
+                            const std::array<double, 5>& unwrapped, double slave_angle, double f, double* slope);
 
 // Force of a tapered inner-wall pair: ∂(½ k w(Δ(f)) g²)/∂coords for g < 0, else 0, with
 // coords = [x_s, y_s, x_1, y_1, …] and f the closest point (as surface_force). Returns w.

@@ -1,0 +1,252 @@
+// The contact search's shortcuts keep its answer (issue 4 performance; ring_pair_contact.hpp):
+//  - the Verlet candidate list, the chord-frame distance bound that orders and stops the
+//    closest-point projections, and the cubic formed once per piece and evaluation give
+//    exactly (bitwise) the contributions of a full search that projects every slave on every
+//    piece of its master surface and keeps the closest owned one within one element depth;
+//  - nodes that approach fast — by just under the skin per evaluation, or by several skins at
+//    once — are never missed: after every move the kept list gives what a list built on the
+//    spot gives.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <numbers>
+#include <random>
+
+#include "fe/chain/chain_mesh.hpp"
+#include "fe/chain/chain_model.hpp"
+#include "fe/contact/ring_pair_contact.hpp"
+#include "fe/contact/self_contact_taper.hpp"
+
+using namespace ringcrush::fe;
+
+namespace {
+constexpr double kR = 25.4e-3;
+// The chain model's inner-wall exclusion and taper (fe_input.hpp, self_contact_taper.hpp).
+constexpr double kExclusion = 0.2;
+
+struct Scene {
+  ChainTopology t;
+  std::vector<ContactPass> passes;
+  double inner_radius = 0;
+};
+Scene scene(int rings, bool half, int around) {
+  ChainInput in;
+  in.rings = rings;
+  in.mesh.elements_around = around;
+  in.mesh.half_ring = half;
+  in.joints = JointKind::Free;
+  in.pitch_m = 2 * kR;
+  Scene s{make_chain_topology(in), {}, in.ring.inner_radius_m};
+  const double k_scale = in.material.youngs_modulus_pa * in.ring.width_m / s.t.ring.element_depth;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < rings; ++j)
+      if (i != j) s.passes.push_back(outer_pass(s.t.ring, s.t.ring_node[i], i, s.t.ring_node[j], j, k_scale, 0.0125, 0.25));
+  for (int i = 0; i < rings; ++i)
+    for (auto& p : inner_wall_passes(s.t.ring, s.t.ring_node[i], i, k_scale, 0.0125, 0.25, kExclusion,
+                                     kSelfContactTaperBandRad, true))
+      s.passes.push_back(std::move(p));
+  return s;
+}
+
+// Ring `moved` raised by dy towards the ring above it; the last ring flattened so that its
+// inner wall crosses itself by 2δ at its centre (y − y_c → (y − y_c)(r − r_i − δ)/r, as
+// RingPairContact.SqueezedRingContactsItsInnerWall); every node jittered.
+std::vector<Eigen::Vector2d> configuration(const Scene& s, int moved, double dy, double delta, double jitter,
+                                           unsigned seed) {
+  std::vector<Eigen::Vector2d> x = s.t.mesh.nodes;
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> d(-jitter, jitter);
+  if (delta > 0) {
+    const double yc = s.t.mesh.ring_centre_y.back(), ri = s.inner_radius;
+    for (int n : s.t.ring_node.back()) {
+      const Eigen::Vector2d rel(x[n].x(), x[n].y() - yc);
+      x[n].y() = yc + rel.y() * (rel.norm() - ri - delta) / rel.norm();
+    }
+  }
+  for (int n : s.t.ring_node[moved]) x[n].y() += dy;
+  for (auto& p : x) {
+    if (std::abs(p.x()) > 1e-15) p.x() += d(gen);
+    p.y() += d(gen);
+  }
+  return x;
+}
+
+// The full search: every slave of every pass projected on every piece; the closest owned
+// point within one depth decides (its force as SurfaceContact forms it).
+std::vector<ContactContribution> full_search(const std::vector<ContactPass>& passes, double depth,
+                                             const std::vector<Eigen::Vector2d>& x) {
+  std::vector<ContactContribution> out;
+  for (const ContactPass& p : passes) {
+    const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
+    for (std::size_t s = 0; s < p.slaves.size(); ++s) {
+      int best = -1;
+      double best_abs = depth, best_f = 0, best_gap = 0;
+      for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+        const PiecePolynomial poly(p.pieces[q]);
+        double xy[12];
+        xy[0] = x[p.slaves[s]].x();
+        xy[1] = x[p.slaves[s]].y();
+        for (int a = 0; a < p.pieces[q].count; ++a) {
+          xy[2 + 2 * a] = x[p.pieces[q].nodes[a]].x();
+          xy[3 + 2 * a] = x[p.pieces[q].nodes[a]].y();
+        }
+        double f = poly.lo - 1.0, gap = 0;
+        if (!surface_gap(poly, xy, p.symmetric_end[q], true, f, gap)) continue;
+        if (p.self && taper.weight(arc_to_closest_point(poly, p.piece_angle[q], p.slave_angle[s], f, nullptr)) == 0)
+          continue;
+        if (std::abs(gap) < best_abs) {
+          best = static_cast<int>(q);
+          best_abs = std::abs(gap);
+          best_f = f;
+          best_gap = gap;
+        }
+      }
+      if (best < 0 || !(best_gap < 0)) continue;
+      const CurvePiece& piece = p.pieces[static_cast<std::size_t>(best)];
+      const PiecePolynomial poly(piece);
+      ContactContribution& c = out.emplace_back();
+      c.count = 1 + piece.count;
+      c.nodes[0] = p.slaves[s];
+      double xy[12];
+      xy[0] = x[p.slaves[s]].x();
+      xy[1] = x[p.slaves[s]].y();
+      for (int a = 0; a < piece.count; ++a) {
+        c.nodes[1 + a] = piece.nodes[a];
+        xy[2 + 2 * a] = x[piece.nodes[a]].x();
+        xy[3 + 2 * a] = x[piece.nodes[a]].y();
+      }
+      c.force.setZero();
+      if (p.self)
+        tapered_self_force(poly, xy, p.slave_k[s], best_f, best_gap, taper, p.slave_angle[s],
+                           p.piece_angle[static_cast<std::size_t>(best)], c.force.data());
+      else
+        surface_force(poly, xy, p.slave_k[s], best_f, best_gap, c.force.data());
+      c.gap = best_gap;
+    }
+  }
+  return out;
+}
+
+void expect_same(const std::vector<ContactContribution>& got, const std::vector<ContactContribution>& ref,
+                 const std::string& where) {
+  ASSERT_EQ(got.size(), ref.size()) << where;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    EXPECT_EQ(got[i].count, ref[i].count) << where << ", contribution " << i;
+    EXPECT_EQ(got[i].nodes, ref[i].nodes) << where << ", contribution " << i;
+    EXPECT_EQ(got[i].gap, ref[i].gap) << where << ", contribution " << i;
+    EXPECT_EQ(got[i].force, ref[i].force) << where << ", contribution " << i;
+  }
+}
+}  // namespace
+
+TEST(ContactSearch, PrunedSearchIsTheFullSearch) {
+  int ring_ring = 0, self = 0;
+  for (bool half : {true, false}) {
+    const Scene s = scene(3, half, 16);
+    const double depth = s.t.ring.element_depth;
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      // Ring 2 from 0.08 to 0.48 of the wall into ring 1; ring 3's inner wall crossing
+      // itself by 0 to 0.5 of the wall.
+      const double dy = 0.08 * seed * depth, delta = 0.05 * (seed - 1) * depth;
+      const auto x = configuration(s, 1, dy, delta, 0.05 * depth, seed);
+      SurfaceContact contact(s.passes, depth);
+      std::vector<ContactContribution> out;
+      SurfaceContactState st;
+      contact.evaluate(x, false, out, nullptr, st);
+      const auto ref = full_search(s.passes, depth, x);
+      expect_same(out, ref, (half ? "half rings, seed " : "full rings, seed ") + std::to_string(seed));
+      for (const auto& c : ref) {
+        bool own = false;
+        for (const auto& ring : s.t.ring_node)
+          if (std::find(ring.begin(), ring.end(), c.nodes[0]) != ring.end())
+            own = std::find(ring.begin(), ring.end(), c.nodes[1]) != ring.end();
+        ++(own ? self : ring_ring);
+      }
+    }
+  }
+  // Both kinds of pass were compared where they act.
+  EXPECT_GT(ring_ring, 20);
+  EXPECT_GT(self, 10);
+}
+
+TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
+  const Scene s = scene(2, true, 16);
+  const double depth = s.t.ring.element_depth, skin = 0.25 * depth;
+  SurfaceContact kept(s.passes, depth);
+  std::vector<ContactContribution> out;
+  SurfaceContactState st;
+  // Ring 2 starts 3 depths below ring 1 (beyond every padded box: no candidates), then comes
+  // up by just under one skin per evaluation, then by 2.5 skins at once, into contact.
+  double dy = -3 * depth;
+  kept.evaluate(configuration(s, 1, dy, 0.0, 0.0, 1), false, out, nullptr, st);
+  auto ring_ring_candidates = [&] {
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < s.passes.size(); ++p)
+      if (!s.passes[p].self) n += kept.candidates(p);
+    return n;
+  };
+  EXPECT_EQ(ring_ring_candidates(), 0u);
+  std::vector<double> moves(11, 0.99 * skin);  // to 0.28 of the wall apart
+  moves.push_back(2.5 * skin);                 // 0.35 of the wall into ring 1 at once
+  moves.push_back(0.99 * skin);                // 0.59 into it
+  int touching = 0;
+  for (std::size_t k = 0; k < moves.size(); ++k) {
+    dy += moves[k];
+    const auto x = configuration(s, 1, dy, 0.0, 0.0, 1);
+    out.clear();
+    kept.evaluate(x, false, out, nullptr, st);
+    SurfaceContact fresh(s.passes, depth);
+    std::vector<ContactContribution> ref;
+    SurfaceContactState sr;
+    fresh.evaluate(x, false, ref, nullptr, sr);
+    expect_same(out, ref, "move " + std::to_string(k));
+    EXPECT_EQ(st.energy, sr.energy) << "move " << k;
+    if (!ref.empty()) ++touching;
+  }
+  // The last two moves overlap the rings: contact found, by both lists.
+  EXPECT_GE(touching, 2);
+  EXPECT_GT(ring_ring_candidates(), 0u);
+  EXPECT_GT(kept.rebuilds(), 2);  // the kept list was rebuilt on the way, not every time
+  EXPECT_LT(kept.rebuilds(), static_cast<long>(moves.size()));
+}
+
+// The chain model's force with contacts active (ring↔ring, inner wall, impactor) is bitwise
+// the same on one thread or two (the contact is searched on the calling thread while both
+// deal the elements; the sums are formed in a fixed order, chain_model.hpp).
+TEST(ContactSearch, ChainForceWithContactIsThreadIndependent) {
+  ChainInput in;
+  in.rings = 3;
+  in.mesh.elements_around = 16;
+  in.joints = JointKind::Free;
+  in.integration = Integration::Selective;
+  in.threads = 1;
+  ChainModel serial(in);
+  in.threads = 2;
+  ChainModel threaded(in);
+  const ChainMesh& mesh = serial.mesh();
+  const double depth = serial.contact_depth();
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> jitter(-0.02 * depth, 0.02 * depth);
+  for (int step = 1; step <= 3; ++step) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
+    // Rings 2 and 3 raised into the ring above (0.15, 0.30, 0.45 of the wall), the impactor
+    // pushed into ring 1, every ring node jittered.
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e)
+      for (int n : mesh.elements[e]) u(2 * n + 1) = 0.15 * step * depth * mesh.element_ring[e];
+    for (int i = 0; i < serial.dofs(); ++i) u(i) += jitter(gen);
+    u(serial.impactor_dof()) = -0.2 * step * depth;
+    for (int dof : serial.fixed_dofs()) u(dof) = 0;
+    SystemEvaluation a, b;
+    serial.evaluate(u, false, a);
+    threaded.evaluate(u, false, b);
+    EXPECT_EQ(a.force, b.force) << "step " << step;
+    EXPECT_EQ(a.contact_energy, b.contact_energy) << "step " << step;
+    EXPECT_EQ(serial.contact_forces().active_set, threaded.contact_forces().active_set) << "step " << step;
+    EXPECT_GT(serial.contact_forces().ring_ring_n, 0.0) << "step " << step;
+    EXPECT_GT(serial.contact_forces().impactor_n, 0.0) << "step " << step;
+    serial.commit(u);
+    threaded.commit(u);
+  }
+}
