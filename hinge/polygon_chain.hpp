@@ -120,6 +120,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::size_t body_offset(int body) const { return body_base_ + 2 * static_cast<std::size_t>(body); }
   std::size_t accumulator_offset() const { return acc_base_; }
   int body_count() const { return n_bodies_; }
+  int ring_count() const { return n_rings_; }
   // Component scales for absolute tolerances (m, m/s, rad, J).
   std::vector<double> component_scales() const;
   // What each component is (node and body positions, their velocities, hinge θp and ā,
@@ -173,6 +174,29 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double hinge_stiffness() const { return k_theta_; }
   double node_mass() const { return m_node_; }
   long contact_pairs_last() const { return static_cast<long>(pairs_.size()); }
+  const PolygonChainInput& input() const { return in_; }
+
+  // Cowper–Symonds flow of one hinge (THEORY §4.3): yield moment M_y(ā) = min(M0 + H ā, cap),
+  // overstress |M|/M_y − 1 and rate λ̇ = C ⟨over⟩^q. The one law of the residual and of the
+  // central-difference driver's implicit flow update (polygon_flow_update.cpp).
+  struct Flow {
+    double yield_moment, over, rate;
+  };
+  Flow flow(double moment, double plastic_sum) const;
+  // Backward-Euler update of every hinge's θp, ā over dt at the positions in y (the
+  // central-difference driver, polygon_central_difference.hpp): λ̇ is solved at the end of
+  // the step, Δλ = dt λ̇(k_θ(θ − θp_n − sign Δλ), ā_n + Δλ), so that the flow's relaxation
+  // time (down to ~0.2 µs for the default Perzyna law, below the explicit step) cannot make
+  // it unstable. Returns the plastic work w |M| Δλ of the modelled structure; the shortest
+  // relaxation time met, 1/(∂λ̇/∂θp), goes to `min_relaxation_time`.
+  double advance_plastic_flow(double dt, double* y, double& min_relaxation_time);
+  // Stable central-difference step of the last evaluation's state (polygon_stable_step.cpp):
+  // per node a Gershgorin bound ω² ≤ Σ|K_ij|/m_i on the membrane, hinge, tie and contact
+  // stiffness (the contacts as they were in the last evaluation, Hunt–Crossley slope
+  // k(1 + χṗ)), and the damping ratio ξ of the Kelvin–Voigt, contact and mass damping rows
+  // the same way; dt = min over nodes and bodies of (2/ω)(√(1 + ξ²) − ξ) (Belytschko et al.,
+  // Nonlinear FE, §6.3), without safety factor.
+  double stable_step() const;
 
  private:
   struct Body {
@@ -261,6 +285,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
   std::vector<std::array<double, 3>> hinge_gx_, hinge_gy_;  // ∂θ_k/∂p on (k−1, k, k+1)
   std::vector<char> axis_force_row_;
+  // Contact rows of the last evaluation for stable_step: per node (then per body) the sums
+  // of the contact stiffness and damping entries, weighted as the forces.
+  std::vector<double> contact_k_row_, contact_c_row_;
+  void add_contact_rows(std::size_t entity, double w, double penetration, double rate);
+  double hinge_rotation(int ring, int j, const double* y) const;
 };
 
 }  // namespace ringcrush::hinge

@@ -12,6 +12,12 @@
 
 namespace ringcrush::hinge {
 
+PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
+  const double My = std::min(M0_ + H_ * plastic_sum, cap_);
+  const double over = std::abs(moment) / My - 1.0;
+  return {My, over, over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0};
+}
+
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
   const double turn0 = 2.0 * std::numbers::pi / n_full_;
   for (int r = 0; r < n_rings_; ++r) {
@@ -180,9 +186,8 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
       // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
       const double M = moment_[j];
-      const double My = std::min(M0_ + H_ * y[o + 5], cap_);
-      const double over = std::abs(M) / My - 1.0;
-      const double rate = over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0;
+      const Flow fl = flow(M, y[o + 5]);
+      const double My = fl.yield_moment, over = fl.over, rate = fl.rate;
       if (over > 0.0) {
         phi[o + 4] = M > 0 ? rate : -rate;
         phi[o + 5] = rate;

@@ -101,6 +101,11 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (f > 0.0) {  // Gershgorin rows of the contact block c cᵀ, c = (1, −(1 − s), −s)
+      add_contact_rows(static_cast<std::size_t>(rs * n_ind_ + j), 2.0 * w, pen, rate);
+      add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + a), 2.0 * w * (1 - s), pen, rate);
+      add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + b), 2.0 * w * s, pen, rate);
+    }
     phi[os + 2] += f * nx;
     phi[os + 3] += f * ny;
     phi[oa + 2] -= (1 - s) * f * nx;
