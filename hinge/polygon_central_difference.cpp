@@ -62,10 +62,9 @@ void PolygonCentralDifference::step(double dt) {
   if (chain_.input().driven_impactor)  // y′ = −V(t) at the step's midpoint
     y_[chain_.body_offset(0)] -= dt * chain_.impactor_velocity(t_ + 0.5 * dt, y_.data());
   for (std::size_t k = 1; k < 4; ++k) y_[acc + k] += 0.5 * dt * a_[acc + k];
-  y_[acc] += chain_.advance_plastic_flow(dt, y_.data(), stats_.min_flow_relaxation_s);
 
   t_ += dt;
-  chain_.rhs(t_, y_.data(), a_next_.data());
+  chain_.rhs_with_flow_update(t_, y_.data(), dt, a_next_.data(), y_[acc], stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
   for (std::size_t i = 0; i < nv; ++i) y_[velocity_rows_[i]] += 0.5 * dt * a_next_[velocity_rows_[i]];
   for (std::size_t k = 1; k < 4; ++k) y_[acc + k] += 0.5 * dt * a_next_[acc + k];

@@ -125,9 +125,10 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
     }
   contact_k_row_.assign(static_cast<std::size_t>(n_rings_ * n_ind_ + n_bodies_), 0.0);
   contact_c_row_.assign(contact_k_row_.size(), 0.0);
-  ring_box_.resize(n_rings_);
   seg_box_.resize(static_cast<std::size_t>(n_rings_ * n_ind_));
-  block_box_.resize(static_cast<std::size_t>(n_rings_ * (n_ind_ / seg_block + 1)));
+  candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
+  candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
+  candidate_margin_ = 0.5 * t_;
 }
 
 std::vector<double> PolygonChain::component_scales() const {

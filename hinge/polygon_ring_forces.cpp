@@ -15,7 +15,8 @@ namespace ringcrush::hinge {
 PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
   const double My = std::min(M0_ + H_ * plastic_sum, cap_);
   const double over = std::abs(moment) / My - 1.0;
-  return {My, over, over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0};
+  // q = 1 (the default Perzyna law) skips pow: pow(x, 1) is x exactly.
+  return {My, over, over > 0.0 ? C_vp_ * (q_ == 1.0 ? over : std::pow(over, q_)) : 0.0};
 }
 
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
@@ -42,6 +43,7 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
       const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
       moment_[k] = k_theta_ * (theta - theta_p_[k]);
+      if (flow_y_ && k < n_ind_) update_hinge_flow(r, k, theta);  // central difference only
       double M = moment_[k];
       double hinge_rate = 0.0;
       if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
