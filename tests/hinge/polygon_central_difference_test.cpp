@@ -75,8 +75,10 @@ TEST(PolygonCentralDifference, FreeFlightKeepsMomentum) {
   EXPECT_GT(cd.statistics().steps, 500);
   EXPECT_NEAR(p1[0], p0[0], 1e-10 * scale);
   EXPECT_NEAR(p1[1], p0[1], 1e-10 * scale);
-  // The ring did deform: the hinges carry moment, the bars ring.
-  EXPECT_GT(chain.energies(cd.time(), cd.y().data()).elastic, 1e-3);
+  // The ring did deform: of the ovalisation mode's ~0.38 J, the bars and hinges took up or
+  // their dampers dissipated a good part.
+  const auto e = chain.energies(cd.time(), cd.y().data());
+  EXPECT_GT(e.elastic + e.damping + e.plastic, 0.05) << e.elastic << " " << e.damping << " " << e.plastic;
 }
 
 // The first 1.5 ms of two welded Test 30 rings struck at 27.7 m/s (ring 1 well into its
@@ -107,6 +109,33 @@ TEST(PolygonCentralDifference, AgreesWithIdaOnTwoRings) {
     }
     EXPECT_GT(two_ring_chain::crush(ida.history.shapes.back(), 0, in), 0.1 * in.outer_diameter_m);
   }
+}
+
+// A whole impact through the scene runner (compare/hinge_run_2d): Test 30's welded chain cut
+// to three rings with half the impactor mass, run to rest on both integrators (IDA at
+// rtol 1e-4): the same final crush ratio per ring to 5e-3 and the same wrap flags. (The
+// energy balance of this run is 1.2e-3 on central difference: the dampers' power is booked
+// from the half-step velocities, README "Level 2 speed".)
+TEST(PolygonCentralDifference, SameFlagsAsIdaOnAShortChain) {
+  using namespace ringcrush::compare;
+  Scene scene = load_scene(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  scene.rings.count = 3;
+  scene.impactor->mass_kg *= 0.5;
+  HingeRunOptions o;
+  o.level = "2";
+  o.relative_tolerance = 1e-4;
+  o.integrator = HingeIntegrator::Ida;
+  const auto ida = run_level2(scene, o);
+  o.integrator = HingeIntegrator::CentralDifference;
+  const auto cd = run_level2(scene, o);
+  ASSERT_EQ(cd.result.crush_ratio.size(), 3u);
+  for (std::size_t r = 0; r < 3; ++r) {
+    EXPECT_NEAR(cd.result.crush_ratio[r], ida.result.crush_ratio[r], 5e-3) << "ring " << r + 1;
+    EXPECT_EQ(cd.result.wrap_around[r], ida.result.wrap_around[r]) << "ring " << r + 1;
+  }
+  EXPECT_GT(ida.result.crush_ratio[0], 0.3);
+  EXPECT_LT(cd.raw.energy_balance_error, 2e-3);
+  EXPECT_EQ(cd.result.extra["integrator"], "central_difference");
 }
 
 TEST(PolygonCentralDifference, RejectsBadSafety) {
