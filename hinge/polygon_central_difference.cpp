@@ -34,7 +34,9 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   }
   a_.resize(y_.size());
   a_next_.resize(y_.size());
-  chain_.rhs(t_, y_.data(), a_.data());
+  // dt = 0: no flow, but the chain notes the hinge moments the first step's work starts from.
+  double no_work = 0.0;
+  chain_.rhs_with_flow_update(t_, y_.data(), 0.0, a_.data(), no_work, stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
   dt_stable_ = options_.safety * chain_.stable_step();
   if (options_.max_step_s > 0) dt_stable_ = std::min(dt_stable_, options_.max_step_s);

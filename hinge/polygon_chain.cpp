@@ -126,6 +126,7 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   contact_k_row_.assign(static_cast<std::size_t>(n_rings_ * n_ind_ + n_bodies_), 0.0);
   contact_c_row_.assign(contact_k_row_.size(), 0.0);
   seg_box_.resize(static_cast<std::size_t>(n_rings_ * n_ind_));
+  flow_moment_.assign(static_cast<std::size_t>(n_rings_ * n_ind_), 0.0);
   candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
   candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
   candidate_margin_ = 0.5 * t_;

@@ -190,6 +190,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // step) cannot make it unstable; then y′ as rhs with the updated θp. The update runs inside
   // the evaluation, which has the hinge rotations at hand. `plastic_work` gains the work of
   // the update (modelled structure), `min_relaxation_time` the shortest 1/(∂λ̇/∂θp) met.
+  // The work is ½(M_prev + M) Δθp with M_prev the moment after the previous call, so the
+  // first call (the driver's, at t0) is made with dt = 0.
   void rhs_with_flow_update(double t, double* y, double dt, double* dydt, double& plastic_work,
                             double& min_relaxation_time);
   // Stable central-difference step of the last evaluation's state (polygon_stable_step.cpp):
@@ -305,6 +307,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void update_hinge_flow(int ring, int k, double theta);
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
+  std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
 };
 
 }  // namespace ringcrush::hinge
