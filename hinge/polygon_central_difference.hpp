@@ -11,7 +11,8 @@
 //   v_{n+1} = v_{n+½} + ½Δt a_{n+1};
 // the dissipated energies (contact damping, Kelvin–Voigt and mass damping, external work)
 // accumulate by the trapezoidal rule on the powers of the two evaluations, the plastic work
-// as the flow update releases it. With equal steps this is the classical central difference
+// as ½(M_n + M_{n+1}) Δθp per hinge, with the moments the two evaluations' forces used
+// (polygon_flow_update.cpp: that closes the hinges' share of the balance). With equal steps this is the classical central difference
 // (v_{n+½} = v_{n−½} + Δt a_n); the synchronised v_n serve the outputs.
 //
 // The step: safety × PolygonChain::stable_step() of the current state (contacts included),
