@@ -95,7 +95,9 @@ std::vector<std::string> explain_fe(const Scene& s) {
 std::vector<std::string> explain_hinge(const Scene& s) {
   std::vector<std::string> e;
   e.push_back(fmt::format("hinge model level {} on {} (hinge.level, hinge.integrator), rtol {:g}", s.hinge.level,
-                          s.hinge.integrator == HingeIntegrator::Ida ? "SUNDIALS IDA" : "Boost.Odeint",
+                          s.hinge.integrator == HingeIntegrator::Ida      ? "SUNDIALS IDA"
+                          : s.hinge.integrator == HingeIntegrator::Odeint ? "Boost.Odeint"
+                                                                          : "explicit central difference",
                           s.hinge.relative_tolerance));
   if (s.hinge.level == "2")
     e.push_back(fmt::format("Level 2: {} bars per ring; ring shapes kept at output steps for the measures",

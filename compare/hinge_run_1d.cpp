@@ -25,7 +25,7 @@ void require_dynamic(const Scene& s, const char* level) {
         "ring use `ringcrush formula`)", s.name, level));
 }
 
-const char* integrator_name(HingeIntegrator i) { return i == HingeIntegrator::Ida ? "ida" : "odeint"; }
+const char* integrator_name(HingeIntegrator i) { return hinge_integrator_name(i); }
 
 std::string final_mode(double crush, const hinge::RingLaw& law) {
   if (crush >= 0.999 * law.lock_deflection()) return "locked";
@@ -165,6 +165,10 @@ hinge::ChainInput chain_input(const Scene& scene) {
 
 hinge::HybridOptions hybrid_options(const Scene& scene, const HingeRunOptions& o) {
   hinge::HybridOptions h;
+  if (o.integrator == HingeIntegrator::CentralDifference)
+    throw std::invalid_argument(fmt::format(
+        "scene {}: hinge level {}: the integrator \"central_difference\" is for level 2 only; use ida or odeint",
+        scene.name, o.level));
   h.integrator = o.integrator == HingeIntegrator::Ida ? hinge::HybridIntegrator::Ida
                                                       : hinge::HybridIntegrator::Odeint;
   h.relative_tolerance = o.relative_tolerance;

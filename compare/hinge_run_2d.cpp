@@ -124,8 +124,10 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   const auto in = polygon_input(scene, s);
   const bool is_static = scene.analysis.type == AnalysisType::Static;
   hinge::PolygonRunOptions po;
-  po.integrator = options.integrator == HingeIntegrator::Ida ? hinge::PolygonIntegrator::Ida
-                                                              : hinge::PolygonIntegrator::Odeint;
+  po.integrator = options.integrator == HingeIntegrator::Ida      ? hinge::PolygonIntegrator::Ida
+                  : options.integrator == HingeIntegrator::Odeint ? hinge::PolygonIntegrator::Odeint
+                                                                  : hinge::PolygonIntegrator::CentralDifference;
+  po.central_difference_safety = s.central_difference_safety;
   run.relative_tolerance_used = options.relative_tolerance >= s.min_relative_tolerance
                                     ? options.relative_tolerance
                                     : s.default_relative_tolerance;
@@ -255,7 +257,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   r.statistics.wall_time_s = raw.wall_time_s;
   r.extra = {
       {"level", "2"},
-      {"integrator", options.integrator == HingeIntegrator::Ida ? "ida" : "odeint"},
+      {"integrator", hinge_integrator_name(options.integrator)},
       {"relative_tolerance_used", run.relative_tolerance_used},
       {"nodes_per_ring", in.nodes_per_ring},
       {"symmetry", in.half_symmetry ? "half" : "full"},
@@ -283,7 +285,12 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"hinge_damping_ratio", s.hinge_damping_ratio},
         {"velocity_tolerance_factor", s.velocity_tolerance_factor},
         {"plastic_tolerance_factor", s.plastic_tolerance_factor},
+        {"central_difference_safety", s.central_difference_safety},
         {"wrap_min_inverted_arc_fraction", s.wrap_min_inverted_arc_fraction}}}};
+  if (options.integrator == HingeIntegrator::CentralDifference)
+    r.extra["central_difference"] = {{"min_step_s", raw.min_step_s},
+                                     {"max_step_s", raw.max_step_s},
+                                     {"min_flow_relaxation_s", raw.min_flow_relaxation_s}};
   if (run.relative_tolerance_used != options.relative_tolerance)
     r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",
                                   options.relative_tolerance, s.min_relative_tolerance,

@@ -41,6 +41,9 @@ struct Level2Settings {
   // 0.4–1.8e-3, past the tests' 1e-3 (README, Level 2 speed).
   double velocity_tolerance_factor = 30.0;
   double plastic_tolerance_factor = 3.0;
+  // integrator = "central_difference": the step is this × the stable-step bound
+  // (hinge/polygon_central_difference.hpp), in (0, 1]; the tolerances do not apply.
+  double central_difference_safety = 0.8;
   // Wrap flag: S > fraction · πR (compare/measures inverted_arc_length) decides; W is
   // reported beside it (measured at the impactor's arrest). THEORY §4.6 proposes 0.1 πR
   // (7.7 mm) and asks for calibration. On the polygon a single kinked node gives 2ℓ0 ≈ 6.4 mm

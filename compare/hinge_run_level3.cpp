@@ -195,7 +195,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
     return -1.0;
   }();
   r.extra = {{"level", "3"},
-             {"integrator", o.integrator == HingeIntegrator::Ida ? "ida" : "odeint"},
+             {"integrator", hinge_integrator_name(o.integrator)},
              {"relative_tolerance", o.relative_tolerance},
              {"absolute_tolerance", o.absolute_tolerance},
              {"theta_F_deg", res.theta_f * 180.0 / std::numbers::pi},

@@ -383,7 +383,13 @@ Scene parse_scene(const std::string& text, const std::string& file) {
         r.fail("level", fmt::format("\"{}\" is not one of 0, 1, 2, 3, \"shock\"", h.level));
     }
     h.integrator = r.choice<HingeIntegrator>(
-        "integrator", {{"ida", HingeIntegrator::Ida}, {"odeint", HingeIntegrator::Odeint}}, h.integrator);
+        "integrator",
+        {{"ida", HingeIntegrator::Ida},
+         {"odeint", HingeIntegrator::Odeint},
+         {"central_difference", HingeIntegrator::CentralDifference}},
+        h.integrator);
+    require(h.integrator != HingeIntegrator::CentralDifference || h.level == "2", r, "integrator",
+            "\"central_difference\" is for level 2 only (the polygon rings); use \"ida\" or \"odeint\"");
     h.relative_tolerance = r.number("relative_tolerance", h.relative_tolerance);
     require(h.relative_tolerance > 0 && h.relative_tolerance < 1, r, "relative_tolerance",
             "must lie in (0, 1)");

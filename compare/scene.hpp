@@ -108,7 +108,11 @@ struct FeSettings {
   double energy_error_limit = 0.05;  // stop when |balance error| / KE0 exceeds this
 };
 
-enum class HingeIntegrator { Ida, Odeint };
+// central_difference: explicit leapfrog, Level 2 only (hinge/polygon_central_difference.hpp).
+enum class HingeIntegrator { Ida, Odeint, CentralDifference };
+inline const char* hinge_integrator_name(HingeIntegrator i) {
+  return i == HingeIntegrator::Ida ? "ida" : i == HingeIntegrator::Odeint ? "odeint" : "central_difference";
+}
 struct HingeSettings {
   std::string level = "1";  // "0", "1", "2", "3" or "shock"
   HingeIntegrator integrator = HingeIntegrator::Ida;

@@ -63,6 +63,11 @@ void PolygonChain::plate_contact(int r, int body, bool above, double t, const do
     const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (f > 0.0) {  // Gershgorin rows of the node–body block
+      add_contact_rows(static_cast<std::size_t>(r * n_ind_ + j), 2.0 * w, pen, rate);
+      if (body >= 0)
+        add_contact_rows(static_cast<std::size_t>(n_rings_ * n_ind_ + body), 2.0 * w, pen, rate);
+    }
     const double fy = above ? -f : f;  // on the node
     phi[o + 3] += fy;
     const bool body_free = body >= 0 && !(body == 0 && in_.driven_impactor);
@@ -119,6 +124,10 @@ void PolygonChain::body_body_contact(double t, const double* y, double* phi, Tal
     const double rate = body_v(lower, t, y) - body_v(upper, t, y);
     double diss = 0.0;
     const double f = contact_force(pen, rate, diss);
+    if (f > 0.0) {
+      add_contact_rows(static_cast<std::size_t>(n_rings_ * n_ind_ + upper), 2.0, pen, rate);
+      if (lower >= 0) add_contact_rows(static_cast<std::size_t>(n_rings_ * n_ind_ + lower), 2.0, pen, rate);
+    }
     tally.dissipation += diss;
     tally.contact_energy += 0.5 * k_n_ * pen * pen;
     const bool upper_free = !(upper == 0 && in_.driven_impactor);

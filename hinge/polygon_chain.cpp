@@ -123,9 +123,13 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
       axis_force_row_[node_offset(r, 0) + 2] = 1;
       axis_force_row_[node_offset(r, n_ind_ - 1) + 2] = 1;
     }
-  ring_box_.resize(n_rings_);
+  contact_k_row_.assign(static_cast<std::size_t>(n_rings_ * n_ind_ + n_bodies_), 0.0);
+  contact_c_row_.assign(contact_k_row_.size(), 0.0);
   seg_box_.resize(static_cast<std::size_t>(n_rings_ * n_ind_));
-  block_box_.resize(static_cast<std::size_t>(n_rings_ * (n_ind_ / seg_block + 1)));
+  flow_moment_.assign(static_cast<std::size_t>(n_rings_ * n_ind_), 0.0);
+  candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
+  candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
+  candidate_margin_ = 0.5 * t_;
 }
 
 std::vector<double> PolygonChain::component_scales() const {
@@ -237,8 +241,15 @@ void PolygonChain::diss_partials(double penetration, double rate, double& d_pen,
   }
 }
 
+void PolygonChain::add_contact_rows(std::size_t entity, double w, double penetration, double rate) {
+  contact_k_row_[entity] += w * k_n_ * std::max(0.0, 1.0 + chi_ * rate);
+  contact_c_row_[entity] += w * k_n_ * penetration * chi_;
+}
+
 void PolygonChain::evaluate(double t, const double* y, double* phi, bool record) {
   std::fill(phi, phi + size_, 0.0);
+  std::fill(contact_k_row_.begin(), contact_k_row_.end(), 0.0);
+  std::fill(contact_c_row_.begin(), contact_c_row_.end(), 0.0);
   Tally tally;
   const bool plates = in_.joint == PolygonJoint::Plates;
   if (record) {

@@ -120,6 +120,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::size_t body_offset(int body) const { return body_base_ + 2 * static_cast<std::size_t>(body); }
   std::size_t accumulator_offset() const { return acc_base_; }
   int body_count() const { return n_bodies_; }
+  int ring_count() const { return n_rings_; }
   // Component scales for absolute tolerances (m, m/s, rad, J).
   std::vector<double> component_scales() const;
   // What each component is (node and body positions, their velocities, hinge θp and ā,
@@ -173,6 +174,33 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double hinge_stiffness() const { return k_theta_; }
   double node_mass() const { return m_node_; }
   long contact_pairs_last() const { return static_cast<long>(pairs_.size()); }
+  const PolygonChainInput& input() const { return in_; }
+
+  // Cowper–Symonds flow of one hinge (THEORY §4.3): yield moment M_y(ā) = min(M0 + H ā, cap),
+  // overstress |M|/M_y − 1 and rate λ̇ = C ⟨over⟩^q. The one law of the residual and of the
+  // central-difference driver's implicit flow update (polygon_flow_update.cpp).
+  struct Flow {
+    double yield_moment, over, rate;
+  };
+  Flow flow(double moment, double plastic_sum) const;
+  // rhs for the central-difference driver (polygon_central_difference.hpp): first every
+  // hinge's θp, ā in y advance over dt by backward Euler at the positions in y
+  // (polygon_flow_update.cpp), Δλ = dt λ̇(k_θ(θ − θp_n − sign Δλ), ā_n + Δλ), so that the
+  // flow's relaxation time (~0.2 µs for the default Perzyna law, shorter than the explicit
+  // step) cannot make it unstable; then y′ as rhs with the updated θp. The update runs inside
+  // the evaluation, which has the hinge rotations at hand. `plastic_work` gains the work of
+  // the update (modelled structure), `min_relaxation_time` the shortest 1/(∂λ̇/∂θp) met.
+  // The work is ½(M_prev + M) Δθp with M_prev the moment after the previous call, so the
+  // first call (the driver's, at t0) is made with dt = 0.
+  void rhs_with_flow_update(double t, double* y, double dt, double* dydt, double& plastic_work,
+                            double& min_relaxation_time);
+  // Stable central-difference step of the last evaluation's state (polygon_stable_step.cpp):
+  // per node a Gershgorin bound ω² ≤ Σ|K_ij|/m_i on the membrane, hinge, tie and contact
+  // stiffness (the contacts as they were in the last evaluation, Hunt–Crossley slope
+  // k(1 + χṗ)), and the damping ratio ξ of the Kelvin–Voigt, contact and mass damping rows
+  // the same way; dt = min over nodes and bodies of (2/ω)(√(1 + ξ²) − ξ) (Belytschko et al.,
+  // Nonlinear FE, §6.3), without safety factor.
+  double stable_step() const;
 
  private:
   struct Body {
@@ -208,10 +236,15 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
                      bool record, Tally& tally);
   void body_body_contact(double t, const double* y, double* phi, Tally& tally);
   // polygon_segment_contact.cpp: ring–ring and inner-wall node–segment contact. The broad
-  // phase (boxes per ring, per block of `seg_block` segments and per segment, grown by t)
-  // is refreshed once per evaluation, before the pairs are searched.
+  // phase: per segment a box grown by t, refreshed once per evaluation, and per contact pass
+  // (slave ring, master ring) and slave node a Verlet list of the segments whose box, grown
+  // by t plus `candidate_margin`, held the node when the lists were built; they are rebuilt
+  // once some node has moved more than half the margin (so no segment whose t-box can hold
+  // the node is missed, and the pairs are exactly those of an all-segments search).
   int contact_segments() const;
   void update_contact_boxes(const double* y);
+  void build_candidates(const double* y);
+  int contact_pass(int slave_ring, int master_ring, bool self) const;
   void node_segment_contact(int slave_ring, int master_ring, bool self, const double* y,
                             double* phi, bool record, Tally& tally);
   double prescribed_speed(double t) const;
@@ -256,11 +289,25 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<std::array<int, 2>> tie_pairs_;
   std::vector<std::array<int, 2>> body_body_;  // consecutive bodies incl. target (−1)
   std::vector<double> phi_, pert_y_, pert_r_, base_r_;
-  std::vector<std::array<double, 4>> ring_box_, seg_box_, block_box_;  // contact broad phase
-  static constexpr int seg_block = 4;
+  std::vector<std::array<double, 4>> seg_box_;  // contact broad phase
+  std::vector<int> candidate_start_, candidate_segment_;  // [pass·(n_ind + 1) + j] → range
+  std::vector<double> candidate_reference_;               // node x, y when the lists were built
+  bool candidates_built_ = false;
+  double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
   std::vector<std::array<double, 3>> hinge_gx_, hinge_gy_;  // ∂θ_k/∂p on (k−1, k, k+1)
   std::vector<char> axis_force_row_;
+  // Contact rows of the last evaluation for stable_step: per node (then per body) the sums
+  // of the contact stiffness and damping entries, weighted as the forces.
+  std::vector<double> contact_k_row_, contact_c_row_;
+  void add_contact_rows(std::size_t entity, double w, double penetration, double rate);
+  // The flow update of rhs_with_flow_update, set while it runs: Δλ of one hinge, and the
+  // update of hinge k of ring r in ring_forces (θp, ā in flow_y_, the moment and work).
+  double return_map(double trial_moment, double plastic_sum, double dt, double& min_relaxation_time) const;
+  void update_hinge_flow(int ring, int k, double theta);
+  double* flow_y_ = nullptr;
+  double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
+  std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
 };
 
 }  // namespace ringcrush::hinge

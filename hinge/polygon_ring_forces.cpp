@@ -12,11 +12,27 @@
 
 namespace ringcrush::hinge {
 
+PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
+  const double My = std::min(M0_ + H_ * plastic_sum, cap_);
+  const double over = std::abs(moment) / My - 1.0;
+  // q = 1 (the default Perzyna law) skips pow: pow(x, 1) is x exactly.
+  return {My, over, over > 0.0 ? C_vp_ * (q_ == 1.0 ? over : std::pow(over, q_)) : 0.0};
+}
+
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
   const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  // The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
+  // and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
+  // mirrored nodes and are skipped (their forces were computed and dropped; the sums on the
+  // independent nodes keep their order, so φ and the Jacobian are unchanged to the bit).
+  const int h = n_full_ / 2;
+  const auto bar_needed = [&](int k) { return !half_ || k <= h + 1 || k >= n_full_ - 2; };
+  const auto hinge_needed = [&](int k) { return !half_ || k <= h + 1 || k == n_full_ - 1; };
   for (int r = 0; r < n_rings_; ++r) {
     expand_ring(r, y);
     for (int k = 0; k < n_full_; ++k) {
+      fx_[k] = fy_[k] = 0.0;
+      if (!bar_needed(k)) continue;
       const int k1 = (k + 1) % n_full_;
       const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
       const double l = std::sqrt(bx * bx + by * by);
@@ -26,79 +42,82 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       bar_nx_[k] = -bar_ey_[k];
       bar_ny_[k] = bar_ex_[k];
       bar_beta_[k] = std::atan2(by, bx);
-      fx_[k] = fy_[k] = 0.0;
     }
     for (int k = 0; k < n_full_; ++k) {
+      if (!bar_needed(k)) continue;
       const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
-      // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
-      // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
-      const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
-      const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
-      const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
-      moment_[k] = k_theta_ * (theta - theta_p_[k]);
-      double M = moment_[k];
-      double hinge_rate = 0.0;
-      if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
-        const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
-                            (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
-        M += c_hinge_ * rate;
-        if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
-        hinge_rate = rate;
-      }
-      fx_[km] += M * ax;
-      fy_[km] += M * ay;
-      fx_[k] -= M * (ax + bx);
-      fy_[k] -= M * (ay + by);
-      fx_[kp] += M * bx;
-      fy_[kp] += M * by;
-      if (jac_) {
-        // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
-        // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
-        // The curvature terms −M ∂g/∂p (≈ M/ℓ², 1 % of k_θ/ℓ² at full plastic moment)
-        // are left out: the matrix only drives Newton, the residual stays exact.
-        const std::array<int, 3> nodes{km, k, kp};
-        const std::array<double, 3> gx{-ax, ax + bx, -bx}, gy{-ay, ay + by, -by};
-        hinge_gx_[k] = gx;
-        hinge_gy_[k] = gy;
-        for (int i = 0; i < 3; ++i)
-          for (int m = 0; m < 3; ++m) {
-            const double xx = gx[i] * gx[m], xy = gx[i] * gy[m], yx = gy[i] * gx[m],
-                         yy = gy[i] * gy[m];
-            ring_block(r, nodes[i], nodes[m], 0, -k_theta_ * xx, -k_theta_ * xy, -k_theta_ * yx,
-                       -k_theta_ * yy);
-            if (c_hinge_ > 0)
-              ring_block(r, nodes[i], nodes[m], 2, -c_hinge_ * xx, -c_hinge_ * xy, -c_hinge_ * yx,
-                         -c_hinge_ * yy);
-          }
-        if (k < n_ind_)  // θp of hinge k is an unknown only for the independent nodes
+      if (hinge_needed(k)) {
+        // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
+        // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
+        const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
+        const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
+        const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
+        moment_[k] = k_theta_ * (theta - theta_p_[k]);
+        if (flow_y_ && k < n_ind_) update_hinge_flow(r, k, theta);  // central difference only
+        double M = moment_[k];
+        double hinge_rate = 0.0;
+        if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
+          const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
+                              (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+          M += c_hinge_ * rate;
+          if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
+          hinge_rate = rate;
+        }
+        fx_[km] += M * ax;
+        fy_[km] += M * ay;
+        fx_[k] -= M * (ax + bx);
+        fy_[k] -= M * (ay + by);
+        fx_[kp] += M * bx;
+        fy_[kp] += M * by;
+        if (jac_) {
+          // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
+          // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
+          // The curvature terms −M ∂g/∂p (≈ M/ℓ², 1 % of k_θ/ℓ² at full plastic moment)
+          // are left out: the matrix only drives Newton, the residual stays exact.
+          const std::array<int, 3> nodes{km, k, kp};
+          const std::array<double, 3> gx{-ax, ax + bx, -bx}, gy{-ay, ay + by, -by};
+          hinge_gx_[k] = gx;
+          hinge_gy_[k] = gy;
           for (int i = 0; i < 3; ++i)
-            ring_force_entry(r, nodes[i], node_offset(r, k) + 4, k_theta_ * gx[i], k_theta_ * gy[i]);
-        else  // mirrored hinge: its θp is that of node N − k
-          for (int i = 0; i < 3; ++i)
-            ring_force_entry(r, nodes[i], node_offset(r, n_full_ - k) + 4, k_theta_ * gx[i],
-                             k_theta_ * gy[i]);
-        if (c_hinge_ > 0) {
-          // θ̇ = a·(v_k − v_{k−1}) + b·(v_k − v_{k+1}) with a = ∇β(u_{k−1}), b = ∇β(u_k) of the
-          // bar vectors u: ∂θ̇/∂u = H_β(u) Δv, H_β = [[2uxuy, uy²−ux²], [uy²−ux², −2uxuy]]/|u|⁴.
-          auto hess = [](double ux, double uy, double dvx, double dvy, double& hx, double& hy) {
-            const double l2 = ux * ux + uy * uy, l4 = l2 * l2;
-            const double hxx = 2 * ux * uy / l4, hxy = (uy * uy - ux * ux) / l4;
-            hx = hxx * dvx + hxy * dvy;
-            hy = hxy * dvx - hxx * dvy;
-          };
-          double hax = 0, hay = 0, hbx = 0, hby = 0;
-          hess(px_[k] - px_[km], py_[k] - py_[km], vx_[k] - vx_[km], vy_[k] - vy_[km], hax, hay);
-          hess(px_[kp] - px_[k], py_[kp] - py_[k], vx_[k] - vx_[kp], vy_[k] - vy_[kp], hbx, hby);
-          const std::array<double, 3> rx{-hax, hax - hbx, hbx}, ry{-hay, hay - hby, hby};  // ∂θ̇/∂p
-          for (int i = 0; i < 3; ++i)
-            for (int m = 0; m < 3; ++m)
-              ring_block(r, nodes[i], nodes[m], 0, -c_hinge_ * gx[i] * rx[m], -c_hinge_ * gx[i] * ry[m],
-                         -c_hinge_ * gy[i] * rx[m], -c_hinge_ * gy[i] * ry[m]);
-          if (k < n_ind_) {  // damper power w c_θ θ̇²
-            const double d = 2.0 * node_weight(k) * c_hinge_ * hinge_rate;
-            for (int i = 0; i < 3; ++i) {
-              ring_state_entry(r, acc_base_ + 2, nodes[i], 2, -d * gx[i], -d * gy[i]);
-              ring_state_entry(r, acc_base_ + 2, nodes[i], 0, -d * rx[i], -d * ry[i]);
+            for (int m = 0; m < 3; ++m) {
+              const double xx = gx[i] * gx[m], xy = gx[i] * gy[m], yx = gy[i] * gx[m],
+                           yy = gy[i] * gy[m];
+              ring_block(r, nodes[i], nodes[m], 0, -k_theta_ * xx, -k_theta_ * xy, -k_theta_ * yx,
+                         -k_theta_ * yy);
+              if (c_hinge_ > 0)
+                ring_block(r, nodes[i], nodes[m], 2, -c_hinge_ * xx, -c_hinge_ * xy, -c_hinge_ * yx,
+                           -c_hinge_ * yy);
+            }
+          if (k < n_ind_)  // θp of hinge k is an unknown only for the independent nodes
+            for (int i = 0; i < 3; ++i)
+              ring_force_entry(r, nodes[i], node_offset(r, k) + 4, k_theta_ * gx[i], k_theta_ * gy[i]);
+          else  // mirrored hinge: its θp is that of node N − k
+            for (int i = 0; i < 3; ++i)
+              ring_force_entry(r, nodes[i], node_offset(r, n_full_ - k) + 4, k_theta_ * gx[i],
+                               k_theta_ * gy[i]);
+          if (c_hinge_ > 0) {
+            // θ̇ = a·(v_k − v_{k−1}) + b·(v_k − v_{k+1}) with a = ∇β(u_{k−1}), b = ∇β(u_k) of the
+            // bar vectors u: ∂θ̇/∂u = H_β(u) Δv, H_β = [[2uxuy, uy²−ux²], [uy²−ux², −2uxuy]]/|u|⁴.
+            auto hess = [](double ux, double uy, double dvx, double dvy, double& hx, double& hy) {
+              const double l2 = ux * ux + uy * uy, l4 = l2 * l2;
+              const double hxx = 2 * ux * uy / l4, hxy = (uy * uy - ux * ux) / l4;
+              hx = hxx * dvx + hxy * dvy;
+              hy = hxy * dvx - hxx * dvy;
+            };
+            double hax = 0, hay = 0, hbx = 0, hby = 0;
+            hess(px_[k] - px_[km], py_[k] - py_[km], vx_[k] - vx_[km], vy_[k] - vy_[km], hax, hay);
+            hess(px_[kp] - px_[k], py_[kp] - py_[k], vx_[k] - vx_[kp], vy_[k] - vy_[kp], hbx, hby);
+            const std::array<double, 3> rx{-hax, hax - hbx, hbx}, ry{-hay, hay - hby, hby};  // ∂θ̇/∂p
+            for (int i = 0; i < 3; ++i)
+              for (int m = 0; m < 3; ++m)
+                ring_block(r, nodes[i], nodes[m], 0, -c_hinge_ * gx[i] * rx[m], -c_hinge_ * gx[i] * ry[m],
+                           -c_hinge_ * gy[i] * rx[m], -c_hinge_ * gy[i] * ry[m]);
+            if (k < n_ind_) {  // damper power w c_θ θ̇²
+              const double d = 2.0 * node_weight(k) * c_hinge_ * hinge_rate;
+              for (int i = 0; i < 3; ++i) {
+                ring_state_entry(r, acc_base_ + 2, nodes[i], 2, -d * gx[i], -d * gy[i]);
+                ring_state_entry(r, acc_base_ + 2, nodes[i], 0, -d * rx[i], -d * ry[i]);
+              }
             }
           }
         }
@@ -180,9 +199,8 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
       // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
       const double M = moment_[j];
-      const double My = std::min(M0_ + H_ * y[o + 5], cap_);
-      const double over = std::abs(M) / My - 1.0;
-      const double rate = over > 0.0 ? C_vp_ * std::pow(over, q_) : 0.0;
+      const Flow fl = flow(M, y[o + 5]);
+      const double My = fl.yield_moment, over = fl.over, rate = fl.rate;
       if (over > 0.0) {
         phi[o + 4] = M > 0 ? rate : -rate;
         phi[o + 5] = rate;

@@ -15,54 +15,81 @@ namespace ringcrush::hinge {
 
 int PolygonChain::contact_segments() const { return half_ ? n_ind_ - 1 : n_ind_; }
 
+// Passes: ring r on itself (r), ring r on ring r + 1 (n + 2r) and ring r + 1 on ring r
+// (n + 2r + 1).
+int PolygonChain::contact_pass(int rs, int rm, bool self) const {
+  if (self) return rs;
+  return n_rings_ + 2 * std::min(rs, rm) + (rs > rm ? 1 : 0);
+}
+
 void PolygonChain::update_contact_boxes(const double* y) {
   const int segs = contact_segments();
-  // Broad phase: per ring a bounding box, per block of `seg_block` consecutive segments a
-  // box, per segment a box grown by t. A node tests a block's segments only inside the
-  // block's box (the segments are still visited in order: the same closest segment).
-  const int blocks = (segs + seg_block - 1) / seg_block;
-  auto unite = [](std::array<double, 4>& into, const std::array<double, 4>& b) {
-    into = {std::min(into[0], b[0]), std::max(into[1], b[1]), std::min(into[2], b[2]),
-            std::max(into[3], b[3])};
+  for (int r = 0; r < n_rings_; ++r)
+    for (int a = 0; a < segs; ++a) {
+      const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
+      seg_box_[static_cast<std::size_t>(r * n_ind_ + a)] = {
+          std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
+          std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
+    }
+  // The lists hold while every node is within half the margin (per coordinate) of where it
+  // was: a segment left out had its end points' box, grown by t + margin, miss the node, so
+  // its t-box still misses it.
+  bool fresh = candidates_built_;
+  for (int g = 0; fresh && g < n_rings_ * n_ind_; ++g) {
+    const auto o = static_cast<std::size_t>(g) * 6, c = 2 * static_cast<std::size_t>(g);
+    fresh = std::abs(y[o] - candidate_reference_[c]) <= 0.5 * candidate_margin_ &&
+            std::abs(y[o + 1] - candidate_reference_[c + 1]) <= 0.5 * candidate_margin_;
+  }
+  if (!fresh) build_candidates(y);
+}
+
+void PolygonChain::build_candidates(const double* y) {
+  const int segs = contact_segments();
+  const bool plates = in_.joint == PolygonJoint::Plates;
+  candidate_segment_.clear();
+  std::fill(candidate_start_.begin(), candidate_start_.end(), 0);
+  const double grow = candidate_margin_;  // on top of the t already in seg_box_
+  auto build = [&](int rs, int rm, bool self) {
+    const auto base = static_cast<std::size_t>(contact_pass(rs, rm, self) * (n_ind_ + 1));
+    for (int j = 0; j < n_ind_; ++j) {
+      candidate_start_[base + static_cast<std::size_t>(j)] = static_cast<int>(candidate_segment_.size());
+      const auto os = node_offset(rs, j);
+      const double sx = y[os], sy = y[os + 1];
+      for (int a = 0; a < segs; ++a) {
+        const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
+        if (sx >= sb[0] - grow && sx <= sb[1] + grow && sy >= sb[2] - grow && sy <= sb[3] + grow)
+          candidate_segment_.push_back(a);
+      }
+    }
+    candidate_start_[base + static_cast<std::size_t>(n_ind_)] = static_cast<int>(candidate_segment_.size());
   };
   for (int r = 0; r < n_rings_; ++r) {
-    auto& box = ring_box_[r];
-    box = {1e300, -1e300, 1e300, -1e300};
-    for (int blk = 0; blk < blocks; ++blk) {
-      auto& bb = block_box_[static_cast<std::size_t>(r * blocks + blk)];
-      bb = {1e300, -1e300, 1e300, -1e300};
-      for (int a = blk * seg_block; a < std::min(segs, (blk + 1) * seg_block); ++a) {
-        const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
-        auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
-        sb = {std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
-              std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
-        unite(bb, sb);
-      }
-      unite(box, bb);
+    build(r, r, true);
+    if (!plates && r + 1 < n_rings_) {
+      build(r, r + 1, false);
+      build(r + 1, r, false);
     }
   }
+  for (int g = 0; g < n_rings_ * n_ind_; ++g) {
+    candidate_reference_[2 * static_cast<std::size_t>(g)] = y[static_cast<std::size_t>(g) * 6];
+    candidate_reference_[2 * static_cast<std::size_t>(g) + 1] = y[static_cast<std::size_t>(g) * 6 + 1];
+  }
+  candidates_built_ = true;
 }
 
 void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double* y, double* phi,
                                         bool record, Tally& tally) {
-  const int segs = contact_segments();
-  const int blocks = (segs + seg_block - 1) / seg_block;
-  const auto& box = ring_box_[rm];
+  const auto base = static_cast<std::size_t>(contact_pass(rs, rm, self) * (n_ind_ + 1));
   for (int j = 0; j < n_ind_; ++j) {
     const auto os = node_offset(rs, j);
     const double sx = y[os], sy = y[os + 1];
-    if (sx < box[0] || sx > box[1] || sy < box[2] || sy > box[3]) continue;
     double best = t_ * 2.0;
     int best_a = -1;
     double best_s = 0.0;
-    for (int a = 0; a < segs; ++a) {
-      if (a % seg_block == 0) {
-        const auto& bb = block_box_[static_cast<std::size_t>(rm * blocks + a / seg_block)];
-        if (sx < bb[0] || sx > bb[1] || sy < bb[2] || sy > bb[3]) {
-          a += seg_block - 1;
-          continue;
-        }
-      }
+    const int* first = candidate_segment_.data() + candidate_start_[base + static_cast<std::size_t>(j)];
+    const int* last = candidate_segment_.data() + candidate_start_[base + static_cast<std::size_t>(j) + 1];
+    for (const int* it = first; it != last; ++it) {
+      const int a = *it;
       const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
       if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
       const int b = (a + 1) % n_ind_;
@@ -101,6 +128,11 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (f > 0.0) {  // Gershgorin rows of the contact block c cᵀ, c = (1, −(1 − s), −s)
+      add_contact_rows(static_cast<std::size_t>(rs * n_ind_ + j), 2.0 * w, pen, rate);
+      add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + a), 2.0 * w * (1 - s), pen, rate);
+      add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + b), 2.0 * w * s, pen, rate);
+    }
     phi[os + 2] += f * nx;
     phi[os + 3] += f * ny;
     phi[oa + 2] -= (1 - s) * f * nx;

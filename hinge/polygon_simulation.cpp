@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "odeint_integrator.hpp"
+#include "polygon_central_difference.hpp"
 
 namespace ringcrush::hinge {
 
@@ -112,6 +113,22 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.jacobian_setups = s.preconditioner_setups;
     out.linear_iterations = s.linear_iterations;
     out.symbolic_factorisations = s.symbolic_factorisations;
+  } else if (options.integrator == PolygonIntegrator::CentralDifference) {
+    CentralDifferenceOptions co;
+    co.safety = options.central_difference_safety;
+    co.max_step_s = options.max_step_s;
+    PolygonCentralDifference cd(chain, 0.0, y, co);
+    for (long k = 1; go; ++k) {
+      const double t = cd.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
+      go = recorder.sample(t, cd.y().data()) && t < options.end_time_s;
+    }
+    y = cd.y();
+    const auto& s = cd.statistics();
+    out.steps = s.steps;
+    out.rhs_evaluations = s.rhs_evaluations;
+    out.min_step_s = s.min_step_s;
+    out.max_step_s = s.max_step_s;
+    out.min_flow_relaxation_s = s.min_flow_relaxation_s;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

@@ -1,5 +1,6 @@
-// Runs the Level 2 polygon chain (polygon_chain.hpp) in time on IDA (polygon_ida.hpp) or on
-// Boost.Odeint (dopri5, dense output), sampling the histories, the ring shapes and the
+// Runs the Level 2 polygon chain (polygon_chain.hpp) in time on IDA (polygon_ida.hpp), on
+// Boost.Odeint (dopri5, dense output) or by explicit central difference
+// (polygon_central_difference.hpp), sampling the histories, the ring shapes and the
 // first yield of every hinge. Plain structs in and out: no scene, no TOML (DESIGN.md).
 #pragma once
 
@@ -10,7 +11,7 @@
 
 namespace ringcrush::hinge {
 
-enum class PolygonIntegrator { Ida, Odeint };
+enum class PolygonIntegrator { Ida, Odeint, CentralDifference };
 
 struct PolygonRunOptions {
   PolygonIntegrator integrator = PolygonIntegrator::Ida;
@@ -30,6 +31,9 @@ struct PolygonRunOptions {
   PolygonLinearSolver ida_linear_solver = PolygonLinearSolver::Direct;  // PolygonIdaOptions
   PolygonJacobian ida_jacobian = PolygonJacobian::Analytic;             // PolygonIdaOptions
   std::vector<PolygonIdaStep>* ida_step_log = nullptr;                  // PolygonIdaOptions
+  // Central difference: × the stable-step bound (CentralDifferenceOptions::safety); the
+  // tolerances above do not apply to it.
+  double central_difference_safety = 0.8;
 };
 
 struct PolygonHistory {  // full structure (both halves), SI
@@ -49,6 +53,9 @@ struct PolygonRunOutput {
   double end_time_s = 0.0;
   long steps = 0, rejected_steps = 0, nonlinear_iterations = 0, rhs_evaluations = 0,
        jacobian_setups = 0, linear_iterations = 0, symbolic_factorisations = 0;
+  // Central difference: the smallest and largest step taken and the shortest flow
+  // relaxation time met (CentralDifferenceStatistics); 0 for the other integrators.
+  double min_step_s = 0.0, max_step_s = 0.0, min_flow_relaxation_s = 0.0;
   double wall_time_s = 0.0;
   std::vector<double> final_state;
 };

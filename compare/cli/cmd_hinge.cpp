@@ -39,7 +39,9 @@ HingeRunOptions resolve(const Scene& s, const HingeOptions& o) {
   if (o.integrator) {
     if (*o.integrator == "ida") r.integrator = HingeIntegrator::Ida;
     else if (*o.integrator == "odeint") r.integrator = HingeIntegrator::Odeint;
-    else throw std::invalid_argument(fmt::format("--integrator must be ida or odeint, not \"{}\"", *o.integrator));
+    else if (*o.integrator == "central_difference") r.integrator = HingeIntegrator::CentralDifference;
+    else throw std::invalid_argument(
+        fmt::format("--integrator must be ida, odeint or central_difference (level 2), not \"{}\"", *o.integrator));
   }
   r.relative_tolerance = o.rtol ? *o.rtol : s.hinge.relative_tolerance;
   r.absolute_tolerance = o.atol ? *o.atol : s.hinge.absolute_tolerance;
@@ -60,7 +62,7 @@ void run(const HingeOptions& o) {
     throw std::invalid_argument(fmt::format("hinge level \"{}\" is not available in this build (available: {})",
                                             opt.level, known.empty() ? "none" : known));
   }
-  const char* integ = opt.integrator == HingeIntegrator::Ida ? "ida" : "odeint";
+  const char* integ = hinge_integrator_name(opt.integrator);
   if (!o.quiet) {
     fmt::print("scene {}: {}\n", scene.name, scene.title);
     fmt::print("hinge level {} on {}, rtol {:g}, atol {:g}; {} rings, joints {}, far end {}\n", opt.level,
@@ -114,7 +116,7 @@ void add_hinge_command(CLI::App& app) {
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)");
   cmd->add_option("--level", o->level, "Model level: 0, 1, 2, 3, shock; default from the scene");
-  cmd->add_option("--integrator", o->integrator, "ida | odeint; default from the scene");
+  cmd->add_option("--integrator", o->integrator, "ida | odeint | central_difference (level 2); default from the scene");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance; default from the scene");
   cmd->add_option("--atol", o->atol, "Absolute tolerance; default from the scene");
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing on success");

@@ -4,6 +4,7 @@
 //   ringcrush hinge data/scenes/test30_welded.toml -o results/l2 --level 2
 //   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
+//   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -31,11 +32,12 @@ const HingeLevelRegistration level2{"2", run_hinge_level2};
 
 // Level 2 run options from the command line, defaulting to the scene's.
 HingeRunOptions level2_options(const Scene& scene, const std::string& integrator, std::optional<double> rtol) {
-  if (integrator != "ida" && integrator != "odeint")
-    throw std::invalid_argument("--integrator must be ida or odeint");
   HingeRunOptions opt;
   opt.level = "2";
-  opt.integrator = integrator == "ida" ? HingeIntegrator::Ida : HingeIntegrator::Odeint;
+  if (integrator == "ida") opt.integrator = HingeIntegrator::Ida;
+  else if (integrator == "odeint") opt.integrator = HingeIntegrator::Odeint;
+  else if (integrator == "central_difference") opt.integrator = HingeIntegrator::CentralDifference;
+  else throw std::invalid_argument("--integrator must be ida, odeint or central_difference, not \"" + integrator + "\"");
   opt.relative_tolerance = rtol ? *rtol : scene.hinge.relative_tolerance;
   return opt;
 }
@@ -45,15 +47,18 @@ struct BenchOptions {
   int repeat = 5;
   std::string integrator = "ida";
   std::optional<double> rtol;
+  std::optional<double> safety;
 };
 
 void bench(const BenchOptions& o) {
   const Scene scene = load_scene(o.scene);
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
+  Level2Settings settings;
+  if (o.safety) settings.central_difference_safety = *o.safety;
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
-    last = run_level2(scene, opt);
+    last = run_level2(scene, opt, settings);
     walls.push_back(last.raw.wall_time_s);
     fmt::print("run {}: {:.3f} s, {} steps\n", i + 1, walls.back(), last.raw.steps);
   }
@@ -65,6 +70,11 @@ void bench(const BenchOptions& o) {
              scene.name, o.integrator, scene.hinge.nodes_per_ring, last.relative_tolerance_used, median,
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
              last.raw.symbolic_factorisations, last.raw.linear_iterations, last.raw.energy_balance_error);
+  if (opt.integrator == HingeIntegrator::CentralDifference)
+    fmt::print("central difference: safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
+               "relaxation time {:.3g} s\n",
+               settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
+               median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
              last.raw.arrest_time_s * 1e3);
@@ -78,8 +88,9 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("bench-hinge2", "Benchmark the Level 2 polygon-ring hinge model on a scene");
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--repeat", o->repeat, "Number of runs (median reported)")->check(CLI::Range(1, 1000));
-  cmd->add_option("--integrator", o->integrator, "ida | odeint");
+  cmd->add_option("--integrator", o->integrator, "ida | odeint | central_difference");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (Level 2 raises values below 1e-6 to 1e-3)");
+  cmd->add_option("--safety", o->safety, "central_difference: factor on the stable-step bound, in (0, 1]");
   cmd->callback([o] { bench(*o); });
 }
 
@@ -120,7 +131,7 @@ void add_shapes_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("hinge-shapes", "Level 2 hinge model run with ring shapes (ParaView polylines, SVG)");
   cmd->add_option("scene", o->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", o->output, "Results directory (written completely or not at all)")->required();
-  cmd->add_option("--integrator", o->integrator, "ida | odeint");
+  cmd->add_option("--integrator", o->integrator, "ida | odeint | central_difference");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (Level 2 raises values below 1e-6 to 1e-3)");
   cmd->add_option("--frames", o->frames, "Shape frames over the run; default from the scene")->check(CLI::Range(2, 100000));
   cmd->callback([o] { shapes(*o); });

@@ -1,0 +1,64 @@
+// Explicit central-difference (leapfrog) integration of the Level 2 polygon chain
+// (polygon_chain.hpp), as an explicit FE code integrates a lumped-mass model: the chain's
+// mass is diagonal, so one force evaluation per step advances it.
+//
+// One step of size Δt from the synchronised state (x_n, v_n) with a_n = φ(x_n, v_{n−½})/μ:
+//   v_{n+½} = v_n + ½Δt a_n,   x_{n+1} = x_n + Δt v_{n+½},
+//   θp, ā at x_{n+1} by backward Euler (PolygonChain::advance_plastic_flow: the flow relaxes
+//     faster than the step),
+//   a_{n+1} = φ(x_{n+1}, v_{n+½})/μ — the velocity-dependent forces (Hunt–Crossley,
+//     Kelvin–Voigt, mass damping) from the half-step velocity, as explicit FE codes do —,
+//   v_{n+1} = v_{n+½} + ½Δt a_{n+1};
+// the dissipated energies (contact damping, Kelvin–Voigt and mass damping, external work)
+// accumulate by the trapezoidal rule on the powers of the two evaluations, the plastic work
+// as ½(M_n + M_{n+1}) Δθp per hinge, with the moments the two evaluations' forces used
+// (polygon_flow_update.cpp: that closes the hinges' share of the balance). With equal steps this is the classical central difference
+// (v_{n+½} = v_{n−½} + Δt a_n); the synchronised v_n serve the outputs.
+//
+// The step: safety × PolygonChain::stable_step() of the current state (contacts included),
+// re-computed after every step, and shortened so that every `advance` target is met exactly.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+struct CentralDifferenceOptions {
+  double safety = 0.8;     // × the stable-step bound; in (0, 1] (the FE explicit driver's 0.8)
+  double max_step_s = 0.0;  // 0: none
+};
+
+struct CentralDifferenceStatistics {
+  long steps = 0, rhs_evaluations = 0;
+  double min_step_s = std::numeric_limits<double>::infinity(), max_step_s = 0.0;
+  // Shortest relaxation time 1/(∂λ̇/∂θp) of a flowing hinge met in the run.
+  double min_flow_relaxation_s = std::numeric_limits<double>::infinity();
+};
+
+class PolygonCentralDifference {
+ public:
+  PolygonCentralDifference(PolygonChain& chain, double t0, std::vector<double> y0,
+                           const CentralDifferenceOptions& options);
+  // Steps to t_end (> time()) and returns it.
+  double advance(double t_end);
+  double time() const { return t_; }
+  const std::vector<double>& y() const { return y_; }  // synchronised state at time()
+  const CentralDifferenceStatistics& statistics() const { return stats_; }
+  double stable_step() const { return dt_stable_; }  // safety × bound at the current state
+
+ private:
+  void step(double dt);
+
+  PolygonChain& chain_;
+  CentralDifferenceOptions options_;
+  double t_;
+  std::vector<double> y_, a_, a_next_;
+  std::vector<std::size_t> velocity_rows_, position_rows_;  // kinematic pairs x′ = v
+  double dt_stable_ = 0.0;
+  CentralDifferenceStatistics stats_;
+};
+
+}  // namespace ringcrush::hinge

@@ -1,0 +1,51 @@
+// The stable step of the central-difference driver (PolygonChain::stable_step,
+// polygon_chain.hpp). Per node i with mass μ_i (half on the symmetry axis, the forces
+// weighted alike), a Gershgorin bound of M⁻¹K and of M⁻¹C:
+//   K_i = w (4 k_m + 16 k_θ/ℓ0²) + 2 w k_tie (tied nodes) + contact rows,
+//   C_i = w (4 c_b + 16 c_θ/ℓ0² + c_mass m) + contact rows,
+// where a membrane bar adds k_m e eᵀ blocks of norm k_m to its two ends and their coupling
+// (2 bars × 2 = 4 k_m), a hinge k_θ g gᵀ with |g| = (1, 2, 1)/ℓ (centre 2·4, ends 1·4 twice:
+// 16 k_θ/ℓ²); the contact rows are those the last evaluation summed (k(1 + χṗ) and k p χ
+// per touching pair, polygon_segment_contact.cpp and polygon_body_contact.cpp). Then
+// ω_i² = K_i/μ_i, ξ_i = C_i/(2√(K_i μ_i)) and dt_i = (2/ω_i)(√(1 + ξ_i²) − ξ_i), the
+// central-difference limit with damping taken at the half-step velocity (Belytschko, Liu &
+// Moran, Nonlinear Finite Elements, §6.3). The Kelvin–Voigt dampers (ζ = 1 of the shortest
+// modes by default, PolygonChainInput) put ξ ≈ 1 into every node and so halve the step.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hinge/polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+double PolygonChain::stable_step() const {
+  const double k_ring = 4.0 * k_m_ + 16.0 * k_theta_ / (l0_ * l0_);
+  const double c_ring = 4.0 * c_bar_ + 16.0 * c_hinge_ / (l0_ * l0_) + in_.mass_damping_per_s * m_node_;
+  const bool welded = in_.joint == PolygonJoint::Welded;
+  const int jb = half_ ? n_ind_ - 1 : n_full_ / 2;
+  const double w_tie = half_ ? 0.5 : 1.0;
+  double dt = std::numeric_limits<double>::infinity();
+  auto limit = [&](double K, double C, double mass) {
+    if (!(K > 0.0)) return;
+    const double omega = std::sqrt(K / mass);
+    const double xi = C / (2.0 * std::sqrt(K * mass));
+    dt = std::min(dt, 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi));
+  };
+  for (int r = 0; r < n_rings_; ++r)
+    for (int j = 0; j < n_ind_; ++j) {
+      const auto g = static_cast<std::size_t>(r * n_ind_ + j);
+      const double w = node_weight(j);
+      double K = w * k_ring + contact_k_row_[g];
+      if (welded && ((j == jb && r + 1 < n_rings_) || (j == 0 && r > 0))) K += 2.0 * w_tie * k_tie_;
+      limit(K, w * c_ring + contact_c_row_[g], w * m_node_);
+    }
+  for (int b = 0; b < n_bodies_; ++b) {
+    if (b == 0 && in_.driven_impactor) continue;
+    const auto g = static_cast<std::size_t>(n_rings_ * n_ind_ + b);
+    limit(contact_k_row_[g], contact_c_row_[g], bodies_[b].mass);
+  }
+  return dt;
+}
+
+}  // namespace ringcrush::hinge
