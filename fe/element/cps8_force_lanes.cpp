@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 #include <stdexcept>
 
 namespace ringcrush::fe {
@@ -19,6 +21,10 @@ namespace {
 
 typedef double Lanes __attribute__((vector_size(32)));  // one double per element of the group
 typedef long long LaneMask __attribute__((vector_size(32)));
+// Four consecutive doubles anywhere in memory, read or written as one vector (an unaligned
+// vector load/store; memcpy went through the stack in two halves, and the full-width reload
+// of the halves stalled on store forwarding — perf).
+typedef double UnalignedLanes __attribute__((vector_size(32), aligned(8), may_alias));
 
 constexpr int kMaxPoints = 13;  // 9 stress points + 4 reduced (Barlow) points
 
@@ -38,8 +44,57 @@ struct PointLanes {
   Lanes stretch;             // 1 + 2 ΔE33
 };
 
+// A committed point state read as doubles (9 of them, in member order): from S_n the stress
+// and the first plastic strain, from the last plastic strain ᾱ, the plastic work and λ3.
+static_assert(std::is_standard_layout_v<PointState> && sizeof(PointState) == 9 * sizeof(double));
+constexpr int kStressAt = offsetof(PointState, stress) / sizeof(double);
+constexpr int kHistoryAt = offsetof(PointState, plastic_strain) / sizeof(double) + 2;
+static_assert(kStressAt == 0 && kHistoryAt == 5 && offsetof(PointState, peeq) == 6 * sizeof(double) &&
+              offsetof(PointState, thickness_stretch) == 8 * sizeof(double));
+
+// r[l] = {c[0][l], c[1][l], c[2][l], c[3][l]}: the 4 × 4 transpose of lanes in registers.
+[[gnu::always_inline]] inline void transpose4(const Lanes* c, Lanes* r) {
+  const Lanes t0 = __builtin_shuffle(c[0], c[1], LaneMask{0, 4, 2, 6});
+  const Lanes t1 = __builtin_shuffle(c[0], c[1], LaneMask{1, 5, 3, 7});
+  const Lanes t2 = __builtin_shuffle(c[2], c[3], LaneMask{0, 4, 2, 6});
+  const Lanes t3 = __builtin_shuffle(c[2], c[3], LaneMask{1, 5, 3, 7});
+  r[0] = __builtin_shuffle(t0, t2, LaneMask{0, 1, 4, 5});
+  r[1] = __builtin_shuffle(t1, t3, LaneMask{0, 1, 4, 5});
+  r[2] = __builtin_shuffle(t0, t2, LaneMask{2, 3, 6, 7});
+  r[3] = __builtin_shuffle(t1, t3, LaneMask{2, 3, 6, 7});
+}
+
+// c[m] = {p[0][at + m], p[1][at + m], p[2][at + m], p[3][at + m]}, m = 0..3: four vector
+// loads and a 4 × 4 transpose (unpack the pairs, then swap the halves).
+// Without AVX (two SSE2 halves per vector) a cross-half shuffle is lowered to single
+// values through memory, and lanes filled one value at a time load straight into the halves:
+// that copy gathers value by value.
+template <bool kShuffle>
+[[gnu::always_inline]] inline void gather_transposed(const double* const* p, int at, Lanes* c) {
+  if constexpr (kShuffle) {
+    Lanes r[4];
+    for (int e = 0; e < 4; ++e) r[e] = *reinterpret_cast<const UnalignedLanes*>(p[e] + at);
+    transpose4(r, c);
+  } else {
+    for (int m = 0; m < 4; ++m) c[m] = Lanes{p[0][at + m], p[1][at + m], p[2][at + m], p[3][at + m]};
+  }
+}
+// The inverse: p[l][at + m] = c[m][l].
+template <bool kShuffle>
+[[gnu::always_inline]] inline void scatter_transposed(const Lanes* c, int at, double* const* p) {
+  if constexpr (kShuffle) {
+    Lanes r[4];
+    transpose4(c, r);
+    for (int l = 0; l < 4; ++l) *reinterpret_cast<UnalignedLanes*>(p[l] + at) = r[l];
+  } else {
+    for (int l = 0; l < 4; ++l)
+      for (int m = 0; m < 4; ++m) p[l][at + m] = c[m][l];
+  }
+}
+
 // The kernel body, compiled once per instruction set (below); always inlined so that each
 // copy is compiled wholly for its own target.
+template <bool kShuffle>
 [[gnu::always_inline]] inline void force_lanes(const Cps8LaneGroup& lane, const J2PlaneStress& material) {
   const Cps8Geometry& g0 = *lane[0].geo;
   const bool selective = g0.rule == Integration::Selective;
@@ -49,25 +104,47 @@ struct PointLanes {
       throw std::invalid_argument("cps8_force_lanes: the four elements mix integration rules or bulk viscosity");
   const int np = g0.points, nr = selective ? 4 : 0, n = np + nr;
 
+  // Gathered by 4 × 4 transposes of 4 consecutive values of each element (one vector load
+  // per element, shuffles): filling lanes one value at a time stalled on the store-to-load
+  // forwarding and took half of the kernel (perf).
   GroupInput in;
   for (int i = 0; i < n; ++i) {
-    const auto grad = [&](int e) -> const ShapeGrad& {
-      return i < np ? lane[e].geo->dndx[i] : lane[e].geo->dndx_reduced[i - np];
-    };
-    const ShapeGrad &a = grad(0), &b = grad(1), &c = grad(2), &d = grad(3);
-    for (int k = 0; k < 8; ++k)
-      for (int j = 0; j < 2; ++j) in.d[i][k][j] = Lanes{a(k, j), b(k, j), c(k, j), d(k, j)};
-  }
-  for (int i = 0; i < np; ++i) {
-    in.weight[i] = Lanes{lane[0].geo->weight[i], lane[1].geo->weight[i], lane[2].geo->weight[i],
-                         lane[3].geo->weight[i]};
-    for (int r = 0; r < nr; ++r)
-      in.barlow[i][r] = Lanes{lane[0].geo->barlow(i, r), lane[1].geo->barlow(i, r), lane[2].geo->barlow(i, r),
-                              lane[3].geo->barlow(i, r)};
-  }
-  for (int k = 0; k < 8; ++k)
+    const double* g[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e)
+      g[e] = (i < np ? lane[e].geo->dndx[i] : lane[e].geo->dndx_reduced[i - np]).data();  // column-major 8 × 2
     for (int j = 0; j < 2; ++j)
-      in.u[k][j] = Lanes{lane[0].du[2 * k + j], lane[1].du[2 * k + j], lane[2].du[2 * k + j], lane[3].du[2 * k + j]};
+      for (int k = 0; k < 8; k += 4) {
+        Lanes c[4];
+        gather_transposed<kShuffle>(g, 8 * j + k, c);
+        for (int m = 0; m < 4; ++m) in.d[i][k + m][j] = c[m];
+      }
+  }
+  {
+    const double* w[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e) w[e] = lane[e].geo->weight.data();
+    for (int i = 0; i + 4 <= np; i += 4) gather_transposed<kShuffle>(w, i, &in.weight[i]);
+    if (np == 9) in.weight[8] = Lanes{w[0][8], w[1][8], w[2][8], w[3][8]};
+  }
+  // The Barlow matrix depends on the rule only: one element's, unless they differ.
+  const bool same_barlow = lane[1].geo->barlow == g0.barlow && lane[2].geo->barlow == g0.barlow &&
+                           lane[3].geo->barlow == g0.barlow;
+  for (int i = 0; i < np; ++i)
+    for (int r = 0; r < nr; ++r)
+      in.barlow[i][r] = same_barlow ? Lanes{} + g0.barlow(i, r)
+                                    : Lanes{lane[0].geo->barlow(i, r), lane[1].geo->barlow(i, r),
+                                            lane[2].geo->barlow(i, r), lane[3].geo->barlow(i, r)};
+  {
+    const double* u[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e) u[e] = lane[e].du;
+    for (int k = 0; k < 16; k += 4) {
+      Lanes c[4];  // ux, uy of node k/2, then of node k/2 + 1
+      gather_transposed<kShuffle>(u, k, c);
+      in.u[k / 2][0] = c[0];
+      in.u[k / 2][1] = c[1];
+      in.u[k / 2 + 1][0] = c[2];
+      in.u[k / 2 + 1][1] = c[3];
+    }
+  }
   if (viscous) {
     in.coefficient = Lanes{lane[0].viscous->coefficient, lane[1].viscous->coefficient,
                            lane[2].viscous->coefficient, lane[3].viscous->coefficient};
@@ -82,18 +159,16 @@ struct PointLanes {
     f01[i] = Lanes{};
     f10[i] = Lanes{};
   }
-  for (int a = 0; a < 8; ++a) {
-    const Lanes ux = in.u[a][0], uy = in.u[a][1];
-    for (int i = 0; i < n; ++i) {
-      f00[i] += ux * in.d[i][a][0];
-      f10[i] += uy * in.d[i][a][0];
-      f01[i] += ux * in.d[i][a][1];
-      f11[i] += uy * in.d[i][a][1];
+  for (int i = 0; i < n; ++i)  // point by point: the four sums stay in registers
+    for (int a = 0; a < 8; ++a) {
+      f00[i] += in.u[a][0] * in.d[i][a][0];
+      f10[i] += in.u[a][1] * in.d[i][a][0];
+      f01[i] += in.u[a][0] * in.d[i][a][1];
+      f11[i] += in.u[a][1] * in.d[i][a][1];
     }
-  }
 
   // ΔE = ½(fᵀf − I), Voigt [E11, E22, 2E12]; tr ΔE at the reduced points.
-  Lanes e0[kMaxPoints], e1[kMaxPoints], e2[kMaxPoints];
+  Lanes e0[kMaxPoints]{}, e1[kMaxPoints]{}, e2[kMaxPoints]{};
   for (int i = 0; i < n; ++i) {
     e0[i] = 0.5 * ((f00[i] * f00[i] + f10[i] * f10[i]) - 1.0);
     e1[i] = 0.5 * ((f01[i] * f01[i] + f11[i] * f11[i]) - 1.0);
@@ -114,6 +189,7 @@ struct PointLanes {
   const Mat3& c_inv = material.elastic_compliance();
   const double c11 = c(0, 0), c12 = c(0, 1), shear = c(2, 2), inv_e = c_inv(0, 0), inv_e_nu = c_inv(0, 1);
   const double two_inv_e_nu = 2.0 * inv_e_nu, inv_g = c_inv(2, 2);
+  const double sy_virgin = material.hardening().yield_stress(0.0);  // σy(ᾱ ≤ 0), the table's first point
 
   Lanes force[16], viscous_force[16];
   for (int k = 0; k < 16; ++k) {
@@ -137,15 +213,16 @@ struct PointLanes {
       de1 += corr;
     }
     // Material: elastic trial S = S_n + C ΔE and the yield check of update_stress().
-    Lanes sn0, sn1, sn2, sy, thickness;
-    for (int l = 0; l < kCps8Lanes; ++l) {
-      const PointState& cs = lane[l].committed[i];
-      sn0[l] = cs.stress(0);
-      sn1[l] = cs.stress(1);
-      sn2[l] = cs.stress(2);
-      thickness[l] = cs.thickness_stretch;
-      sy[l] = material.hardening().yield_stress(cs.peeq);
+    Lanes sn[4], history[4], sy;
+    {
+      const double* state[kCps8Lanes];
+      for (int l = 0; l < kCps8Lanes; ++l) state[l] = reinterpret_cast<const double*>(&lane[l].committed[i]);
+      gather_transposed<kShuffle>(state, kStressAt, sn);     // S_n (3), —
+      gather_transposed<kShuffle>(state, kHistoryAt, history);  // —, ᾱ, —, λ3
     }
+    const Lanes sn0 = sn[0], sn1 = sn[1], sn2 = sn[2], thickness = history[3];
+    for (int l = 0; l < kCps8Lanes; ++l)
+      sy[l] = history[1][l] <= 0.0 ? sy_virgin : material.hardening().yield_stress(history[1][l]);
     Lanes t0 = (sn0 + c11 * de0) + c12 * de1, t1 = (sn1 + c12 * de0) + c11 * de1, t2 = sn2 + shear * de2;
     const Lanes xi_trial = 2.0 / 3.0 * ((t0 * t0 + t1 * t1) - t0 * t1) + (2.0 * t2) * t2;
     const LaneMask elastic = 0.5 * xi_trial - (sy * sy) * (1.0 / 3.0) <= (1e-12 * sy) * sy;
@@ -237,20 +314,23 @@ struct PointLanes {
     }
   }
 
+  double* f[kCps8Lanes];
+  for (int l = 0; l < kCps8Lanes; ++l) f[l] = lane[l].out->force.data();
+  for (int k = 0; k < 16; k += 4) scatter_transposed<kShuffle>(&force[k], k, f);
+  if (viscous) {
+    for (int l = 0; l < kCps8Lanes; ++l) f[l] = lane[l].viscous->force->data();
+    for (int k = 0; k < 16; k += 4) scatter_transposed<kShuffle>(&viscous_force[k], k, f);
+  }
   for (int l = 0; l < kCps8Lanes; ++l) {
-    Cps8Output& out = *lane[l].out;
-    for (int k = 0; k < 16; ++k) out.force(k) = force[k][l];
-    if (viscous)
-      for (int k = 0; k < 16; ++k) (*lane[l].viscous->force)(k) = viscous_force[k][l];
-    out.elastic_energy = elastic_energy[l];
-    out.plastic_work = plastic_work[l];
+    lane[l].out->elastic_energy = elastic_energy[l];
+    lane[l].out->plastic_work = plastic_work[l];
   }
 }
 
 }  // namespace
 
 void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes(group, material);
+  force_lanes<false>(group, material);
 }
 
 // AVX2 without FMA: "avx2" implies AVX but not FMA in GCC, so no product is fused into a sum
@@ -258,11 +338,11 @@ void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& 
 // differently from the scalar kernel).
 #if defined(__x86_64__) || defined(__i386__)
 [[gnu::target("avx2")]] void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes(group, material);
+  force_lanes<true>(group, material);
 }
 #else
 void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes(group, material);
+  force_lanes<false>(group, material);
 }
 #endif
 
@@ -274,10 +354,16 @@ bool cps8_lanes_avx2_available() {
 #endif
 }
 
+// Without AVX2 the portable copy is slower than cps8_force() element by element (its 4-wide
+// operations are two SSE2 halves, as the scalar kernel's 2-wide ones; README "Performance"):
+// the elements then go one by one — bitwise the same results either way.
 void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material) {
   static const bool avx2 = cps8_lanes_avx2_available();
-  if (avx2) cps8_force_lanes_avx2(group, material);
-  else cps8_force_lanes_portable(group, material);
+  if (avx2) {
+    cps8_force_lanes_avx2(group, material);
+    return;
+  }
+  for (const Cps8Lane& l : group) cps8_force(*l.geo, l.du, l.committed, l.trial, material, *l.out, l.viscous);
 }
 
 }  // namespace ringcrush::fe
