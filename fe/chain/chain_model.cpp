@@ -204,7 +204,7 @@ struct ChainModel::Impl {
     std::array<ElementVector, kCps8Lanes> viscous;
   };
   void evaluate_lanes(int e, const Eigen::VectorXd& u, bool viscous, LaneResults& r) {
-    if (geometry_stale) regeometry(e, e + kCps8Lanes, u_n);
+    if (geometry_stale) regeometry_lanes(e, u_n);
     double ue[kCps8Lanes][16];
     std::array<BulkViscousLoad, kCps8Lanes> load;
     Cps8LaneGroup group;
@@ -297,6 +297,25 @@ struct ChainModel::Impl {
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh.element_ring[e] + 1, err.what()));
       }
+    }
+  }
+
+  // regeometry(e, e + 4, u) on vector lanes (Cps8GeometryUpdater::update_lanes, bitwise); an
+  // inverted element is reported by regeometry(), with its number.
+  void regeometry_lanes(int e, const Eigen::VectorXd& u) {
+    const auto& mesh = topo.mesh;
+    std::array<ElementCoords, kCps8Lanes> xe;
+    for (int l = 0; l < kCps8Lanes; ++l)
+      for (int a = 0; a < 8; ++a) {
+        const int n = mesh.elements[e + l][a];
+        xe[l](a, 0) = mesh.nodes[n].x() + u(2 * n);
+        xe[l](a, 1) = mesh.nodes[n].y() + u(2 * n + 1);
+      }
+    try {
+      updater.update_lanes({&xe[0], &xe[1], &xe[2], &xe[3]}, width,
+                           {&geometry[e], &geometry[e + 1], &geometry[e + 2], &geometry[e + 3]});
+    } catch (const std::invalid_argument&) {
+      regeometry(e, e + kCps8Lanes, u);
     }
   }
 
