@@ -125,16 +125,18 @@ template <bool kShuffle>
     }
 
   // ΔE = ½(fᵀf − I), Voigt [E11, E22, 2E12]; tr ΔE at the reduced points.
-  Lanes e0[kMaxPoints]{}, e1[kMaxPoints]{}, e2[kMaxPoints]{};
+  Lanes e0[9], e1[9], e2[9], tr_r[4], q_r[4];
   for (int i = 0; i < n; ++i) {
-    e0[i] = 0.5 * ((f00[i] * f00[i] + f10[i] * f10[i]) - 1.0);
-    e1[i] = 0.5 * ((f01[i] * f01[i] + f11[i] * f11[i]) - 1.0);
-    e2[i] = f00[i] * f01[i] + f10[i] * f11[i];
-  }
-  Lanes tr_r[4], q_r[4];
-  for (int r = 0; r < nr; ++r) {
-    tr_r[r] = e0[np + r] + e1[np + r];
-    q_r[r] = Lanes{};
+    const Lanes ei0 = 0.5 * ((f00[i] * f00[i] + f10[i] * f10[i]) - 1.0);
+    const Lanes ei1 = 0.5 * ((f01[i] * f01[i] + f11[i] * f11[i]) - 1.0);
+    if (i < np) {
+      e0[i] = ei0;
+      e1[i] = ei1;
+      e2[i] = f00[i] * f01[i] + f10[i] * f11[i];
+    } else {
+      tr_r[i - np] = ei0 + ei1;
+      q_r[i - np] = Lanes{};
+    }
   }
   // Bulk-viscous pressure of each stress point, (coefficient tr ΔE) / dt.
   Lanes q[9];
