@@ -106,7 +106,11 @@ template <bool kShuffle>
 bool Cps8GeometryUpdater::lanes_vectorised() {
 #if defined(__x86_64__) || defined(__i386__)
   static const bool avx2 = __builtin_cpu_supports("avx2");
+#ifdef __FMA__
+  return false;  // as cps8_lanes_bitwise_build(): an FMA build keeps update() element by element
+#else
   return kDotTreeKnown && avx2;
+#endif
 #else
   return false;
 #endif

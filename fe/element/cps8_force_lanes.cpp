@@ -305,6 +305,14 @@ void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& mate
 }
 #endif
 
+bool cps8_lanes_bitwise_build() {
+#ifdef __FMA__
+  return false;
+#else
+  return true;
+#endif
+}
+
 bool cps8_lanes_avx2_available() {
 #if defined(__x86_64__) || defined(__i386__)
   return __builtin_cpu_supports("avx2");
@@ -317,7 +325,7 @@ bool cps8_lanes_avx2_available() {
 // operations are two SSE2 halves, as the scalar kernel's 2-wide ones; README "Performance"):
 // the elements then go one by one — bitwise the same results either way.
 void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  static const bool avx2 = cps8_lanes_avx2_available();
+  static const bool avx2 = cps8_lanes_bitwise_build() && cps8_lanes_avx2_available();
   if (avx2) {
     cps8_force_lanes_avx2(group, material);
     return;

@@ -46,5 +46,9 @@ void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material)
 void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& material);
 void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material);
 bool cps8_lanes_avx2_available();
+// False in a build with fused multiply–add (RINGCRUSH_NATIVE on an FMA CPU): Eigen then fuses
+// the scalar kernel's 2×2 products into their sums and the lanes (which never fuse) would round
+// differently, so cps8_force_lanes() goes element by element there.
+bool cps8_lanes_bitwise_build();
 
 }  // namespace ringcrush::fe

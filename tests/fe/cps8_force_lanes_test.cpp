@@ -100,9 +100,13 @@ void check_kernel(LaneKernel kernel) {
 
 }  // namespace
 
-TEST(Cps8ForceLanes, PortableCopyIsBitwiseTheScalarKernel) { check_kernel(&cps8_force_lanes_portable); }
+TEST(Cps8ForceLanes, PortableCopyIsBitwiseTheScalarKernel) {
+  if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
+  check_kernel(&cps8_force_lanes_portable);
+}
 
 TEST(Cps8ForceLanes, Avx2CopyIsBitwiseTheScalarKernel) {
+  if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
   if (!cps8_lanes_avx2_available()) GTEST_SKIP() << "this CPU has no AVX2";
   check_kernel(&cps8_force_lanes_avx2);
 }
