@@ -13,9 +13,11 @@
 // (J2PlaneStress::update_stress) lane by lane; the elastic trial, the common case, is
 // vectorised.
 //
-// Instruction sets: the portable build runs the 4-wide operations as two SSE2 halves; on a CPU
-// with AVX2 a second copy of the kernel compiled for AVX2 (WITHOUT fused multiply–add, which
-// would round differently) is chosen at run time, so one binary is exact on every x86-64.
+// Instruction sets: two copies are compiled — portable (the 4-wide operations as two SSE2
+// halves) and AVX2 WITHOUT fused multiply–add (which would round differently) — and
+// cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force() element by
+// element (the portable copy measured slower than that; README "Performance", session 8), so
+// one binary gives the same bits on every x86-64.
 #pragma once
 
 #include <array>
