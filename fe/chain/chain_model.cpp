@@ -17,6 +17,7 @@
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
 #include "fe/dynamics/work_dealer.hpp"
+#include "fe/element/cps8_force_lanes.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
@@ -62,7 +63,7 @@ double thickness_measure(const PointState* states, int points) {
 
 // Elements per dealt chunk on two threads (work_dealer.hpp): ≈ 3 µs of work, long against
 // the shared counter's cost, short against a step.
-constexpr int kDealChunk = 4;
+constexpr int kDealChunk = kCps8Lanes;  // one lane group (cps8_force_lanes.hpp) per chunk
 
 }  // namespace
 
@@ -141,7 +142,22 @@ struct ChainModel::Impl {
     Cps8Output eo;
     ElementVector fv;
     elastic = plastic = 0;
-    for (int e = e0; e < e1; ++e) {
+    int e = e0;
+    if (!want_tangent) {
+      // Force only: four elements at a time on vector lanes (cps8_force_lanes.hpp), summed in
+      // element order as below; the remainder element by element (bitwise the same kernel).
+      LaneResults g;
+      for (; e + kCps8Lanes <= e1; e += kCps8Lanes) {
+        evaluate_lanes(e, u, viscous != nullptr, g);
+        for (int l = 0; l < kCps8Lanes; ++l) {
+          scatter(e + l, g.out[l].force, force);
+          if (viscous) scatter(e + l, g.viscous[l], viscous);
+          elastic += g.out[l].elastic_energy;
+          plastic += g.out[l].plastic_work;
+        }
+      }
+    }
+    for (; e < e1; ++e) {
       evaluate_element(e, u, want_tangent, viscous != nullptr, eo, fv);
       scatter(e, eo.force, force);
       if (viscous) scatter(e, fv, viscous);
@@ -181,6 +197,34 @@ struct ChainModel::Impl {
     }
   }
 
+  // Elements [e, e + 4) force only on vector lanes (cps8_force_lanes.hpp): bitwise
+  // evaluate_element() on each.
+  struct LaneResults {
+    std::array<Cps8Output, kCps8Lanes> out;
+    std::array<ElementVector, kCps8Lanes> viscous;
+  };
+  void evaluate_lanes(int e, const Eigen::VectorXd& u, bool viscous, LaneResults& r) {
+    if (geometry_stale) regeometry_lanes(e, u_n);
+    double ue[kCps8Lanes][16];
+    std::array<BulkViscousLoad, kCps8Lanes> load;
+    Cps8LaneGroup group;
+    for (int l = 0; l < kCps8Lanes; ++l) {
+      const auto& conn = topo.mesh.elements[e + l];
+      for (int a = 0; a < 8; ++a) {
+        ue[l][2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
+        ue[l][2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
+      }
+      const std::size_t p0 = static_cast<std::size_t>(e + l) * points_per_element;
+      group[l] = Cps8Lane{&geometry[e + l], ue[l], &committed[p0], &trial[p0], &r.out[l], nullptr};
+      if (viscous) {
+        r.viscous[l].setZero();
+        load[l] = BulkViscousLoad{bulk_scale / std::sqrt(omega2_exact[e + l]), increment_time, &r.viscous[l]};
+        group[l].viscous = &load[l];
+      }
+    }
+    cps8_force_lanes(group, material);
+  }
+
   void scatter(int e, const ElementVector& fe, double* global) const {
     const auto& conn = topo.mesh.elements[e];
     for (int a = 0; a < 8; ++a) {
@@ -199,7 +243,18 @@ struct ChainModel::Impl {
     ElementVector fv;
     int b = 0, end = 0;
     try {
+      LaneResults g;
       while (dealer.next(b, end)) {
+        if (end - b == kCps8Lanes) {
+          evaluate_lanes(b, u, viscous, g);
+          for (int l = 0; l < kCps8Lanes; ++l) {
+            slot_force[b + l] = g.out[l].force;
+            if (viscous) slot_viscous[b + l] = g.viscous[l];
+            slot_energy[b + l] = {g.out[l].elastic_energy, g.out[l].plastic_work};
+          }
+          dealer.done(end - b);
+          continue;
+        }
         for (int e = b; e < end; ++e) {
           evaluate_element(e, u, false, viscous, eo, fv);
           slot_force[e] = eo.force;
@@ -242,6 +297,25 @@ struct ChainModel::Impl {
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh.element_ring[e] + 1, err.what()));
       }
+    }
+  }
+
+  // regeometry(e, e + 4, u) on vector lanes (Cps8GeometryUpdater::update_lanes, bitwise); an
+  // inverted element is reported by regeometry(), with its number.
+  void regeometry_lanes(int e, const Eigen::VectorXd& u) {
+    const auto& mesh = topo.mesh;
+    std::array<ElementCoords, kCps8Lanes> xe;
+    for (int l = 0; l < kCps8Lanes; ++l)
+      for (int a = 0; a < 8; ++a) {
+        const int n = mesh.elements[e + l][a];
+        xe[l](a, 0) = mesh.nodes[n].x() + u(2 * n);
+        xe[l](a, 1) = mesh.nodes[n].y() + u(2 * n + 1);
+      }
+    try {
+      updater.update_lanes({&xe[0], &xe[1], &xe[2], &xe[3]}, width,
+                           {&geometry[e], &geometry[e + 1], &geometry[e + 2], &geometry[e + 3]});
+    } catch (const std::invalid_argument&) {
+      regeometry(e, e + kCps8Lanes, u);
     }
   }
 

@@ -18,6 +18,14 @@ class Cps8GeometryUpdater {
   // geo: built by cps8_geometry() with the same rule (its shape values and Barlow matrix
   // are kept). Throws std::invalid_argument if the element is inverted or degenerate at x.
   void update(const ElementCoords& x, double thickness, Cps8Geometry& geo) const;
+  // update() on four elements at once, one vector lane per element (geometry_update_lanes.cpp),
+  // bitwise update() on each. Where the lanes cannot repeat update()'s sums exactly (no AVX2,
+  // or a vector width other than Eigen's SSE2 / AVX dot products) and for a group with an
+  // inverted or degenerate element (update() then throws), the elements go one by one.
+  void update_lanes(const std::array<const ElementCoords*, 4>& x, double thickness,
+                    const std::array<Cps8Geometry*, 4>& geo) const;
+  // Whether update_lanes() runs on vector lanes on this CPU and build.
+  static bool lanes_vectorised();
 
  private:
   Integration rule_;

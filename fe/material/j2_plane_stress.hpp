@@ -65,6 +65,8 @@ class J2PlaneStress {
   inline J2Update update_stress(const Vec3& strain_increment, const PointState& committed) const;
 
   const Mat3& elastic_tangent() const { return c_; }
+  // C⁻¹ as update_stress() reads it (the lane kernel, cps8_force_lanes.cpp, repeats its elastic branch).
+  const Mat3& elastic_compliance() const { return c_inv_; }
   double youngs_modulus() const { return e_; }
   double poisson_ratio() const { return nu_; }
   const HardeningTable& hardening() const { return table_; }

@@ -1,0 +1,336 @@
+// cps8_force() on four elements at once, one vector lane per element (cps8_force_lanes.hpp).
+//
+// Every line below is a line of cps8_force() (cps8_force.cpp) and of the inline pieces it
+// calls — deformation_gradient() and green_lagrange() (kinematics.hpp), the elastic branch of
+// J2PlaneStress::update_stress() (j2_plane_stress.hpp), point_stress() (cps8_element.hpp),
+// cauchy_from_pk2() — written on lanes with each sum in the same order and no product fused
+// into an addition, so that each lane rounds exactly as the scalar kernel does on its element
+// (IEEE arithmetic is lane by lane). The parenthesised forms in the comments are the scalar
+// kernel's evaluation order. Selective rule: thesis §3.6.1.4; push-forward: §3.6.1.2.
+#include "fe/element/cps8_force_lanes.hpp"
+
+#include "fe/element/element_lanes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+#include <stdexcept>
+
+namespace ringcrush::fe {
+
+namespace {
+
+using namespace lanes;
+
+constexpr int kMaxPoints = 13;  // 9 stress points + 4 reduced (Barlow) points
+
+// The group's element data as lanes (structure of arrays): ∂N_a/∂X_j at every point, weights,
+// Barlow matrices and displacement increments, each gathered once from the four elements.
+struct GroupInput {
+  Lanes d[kMaxPoints][8][2];
+  Lanes weight[9], barlow[9][4];
+  Lanes u[8][2];
+  Lanes coefficient{}, dt{};  // bulk viscosity (zero when off)
+};
+
+// Per stress point, what the push-forward and the trial states need after the force pass.
+struct PointLanes {
+  Lanes f00, f01, f10, f11;  // f
+  Lanes s0, s1, s2;          // S (the material's stress of the increment)
+  Lanes stretch;             // 1 + 2 ΔE33
+};
+
+// A committed point state read as doubles (9 of them, in member order): from S_n the stress
+// and the first plastic strain, from the last plastic strain ᾱ, the plastic work and λ3.
+static_assert(std::is_standard_layout_v<PointState> && sizeof(PointState) == 9 * sizeof(double));
+constexpr int kStressAt = offsetof(PointState, stress) / sizeof(double);
+constexpr int kHistoryAt = offsetof(PointState, plastic_strain) / sizeof(double) + 2;
+static_assert(kStressAt == 0 && kHistoryAt == 5 && offsetof(PointState, peeq) == 6 * sizeof(double) &&
+              offsetof(PointState, thickness_stretch) == 8 * sizeof(double));
+
+// The kernel body, compiled once per instruction set (below); always inlined so that each
+// copy is compiled wholly for its own target.
+template <bool kShuffle>
+[[gnu::always_inline]] inline void force_lanes(const Cps8LaneGroup& lane, const J2PlaneStress& material) {
+  const Cps8Geometry& g0 = *lane[0].geo;
+  const bool selective = g0.rule == Integration::Selective;
+  const bool viscous = lane[0].viscous != nullptr;
+  for (const Cps8Lane& l : lane)
+    if (l.geo->rule != g0.rule || l.geo->points != g0.points || (l.viscous != nullptr) != viscous)
+      throw std::invalid_argument("cps8_force_lanes: the four elements mix integration rules or bulk viscosity");
+  const int np = g0.points, nr = selective ? 4 : 0, n = np + nr;
+
+  // Gathered by 4 × 4 transposes of 4 consecutive values of each element (one vector load
+  // per element, shuffles): filling lanes one value at a time stalled on the store-to-load
+  // forwarding and took half of the kernel (perf).
+  GroupInput in;
+  for (int i = 0; i < n; ++i) {
+    const double* g[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e)
+      g[e] = (i < np ? lane[e].geo->dndx[i] : lane[e].geo->dndx_reduced[i - np]).data();  // column-major 8 × 2
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 8; k += 4) {
+        Lanes c[4];
+        gather_transposed<kShuffle>(g, 8 * j + k, c);
+        for (int m = 0; m < 4; ++m) in.d[i][k + m][j] = c[m];
+      }
+  }
+  {
+    const double* w[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e) w[e] = lane[e].geo->weight.data();
+    for (int i = 0; i + 4 <= np; i += 4) gather_transposed<kShuffle>(w, i, &in.weight[i]);
+    if (np == 9) in.weight[8] = Lanes{w[0][8], w[1][8], w[2][8], w[3][8]};
+  }
+  // The Barlow matrix depends on the rule only: one element's, unless they differ.
+  const bool same_barlow = lane[1].geo->barlow == g0.barlow && lane[2].geo->barlow == g0.barlow &&
+                           lane[3].geo->barlow == g0.barlow;
+  for (int i = 0; i < np; ++i)
+    for (int r = 0; r < nr; ++r)
+      in.barlow[i][r] = same_barlow ? Lanes{} + g0.barlow(i, r)
+                                    : Lanes{lane[0].geo->barlow(i, r), lane[1].geo->barlow(i, r),
+                                            lane[2].geo->barlow(i, r), lane[3].geo->barlow(i, r)};
+  {
+    const double* u[kCps8Lanes];
+    for (int e = 0; e < kCps8Lanes; ++e) u[e] = lane[e].du;
+    for (int k = 0; k < 16; k += 4) {
+      Lanes c[4];  // ux, uy of node k/2, then of node k/2 + 1
+      gather_transposed<kShuffle>(u, k, c);
+      in.u[k / 2][0] = c[0];
+      in.u[k / 2][1] = c[1];
+      in.u[k / 2 + 1][0] = c[2];
+      in.u[k / 2 + 1][1] = c[3];
+    }
+  }
+  if (viscous) {
+    in.coefficient = Lanes{lane[0].viscous->coefficient, lane[1].viscous->coefficient,
+                           lane[2].viscous->coefficient, lane[3].viscous->coefficient};
+    in.dt = Lanes{lane[0].viscous->dt, lane[1].viscous->dt, lane[2].viscous->dt, lane[3].viscous->dt};
+  }
+
+  // f = I + Σ_a u_a ⊗ ∇N_a at every point, the sum over a = 0..7 in order.
+  Lanes f00[kMaxPoints], f01[kMaxPoints], f10[kMaxPoints], f11[kMaxPoints];
+  for (int i = 0; i < n; ++i) {
+    f00[i] = Lanes{} + 1.0;
+    f11[i] = Lanes{} + 1.0;
+    f01[i] = Lanes{};
+    f10[i] = Lanes{};
+  }
+  for (int i = 0; i < n; ++i)  // point by point: the four sums stay in registers
+    for (int a = 0; a < 8; ++a) {
+      f00[i] += in.u[a][0] * in.d[i][a][0];
+      f10[i] += in.u[a][1] * in.d[i][a][0];
+      f01[i] += in.u[a][0] * in.d[i][a][1];
+      f11[i] += in.u[a][1] * in.d[i][a][1];
+    }
+
+  // ΔE = ½(fᵀf − I), Voigt [E11, E22, 2E12]; tr ΔE at the reduced points.
+  Lanes e0[9], e1[9], e2[9], tr_r[4], q_r[4];
+  for (int i = 0; i < n; ++i) {
+    const Lanes ei0 = 0.5 * ((f00[i] * f00[i] + f10[i] * f10[i]) - 1.0);
+    const Lanes ei1 = 0.5 * ((f01[i] * f01[i] + f11[i] * f11[i]) - 1.0);
+    if (i < np) {
+      e0[i] = ei0;
+      e1[i] = ei1;
+      e2[i] = f00[i] * f01[i] + f10[i] * f11[i];
+    } else {
+      tr_r[i - np] = ei0 + ei1;
+      q_r[i - np] = Lanes{};
+    }
+  }
+  // Bulk-viscous pressure of each stress point, (coefficient tr ΔE) / dt.
+  Lanes q[9];
+  if (viscous)
+    for (int i = 0; i < np; ++i) q[i] = in.coefficient * (e0[i] + e1[i]) / in.dt;
+
+  // The elastic branch's constants, as update_stress() reads them.
+  const Mat3& c = material.elastic_tangent();
+  const Mat3& c_inv = material.elastic_compliance();
+  const double c11 = c(0, 0), c12 = c(0, 1), shear = c(2, 2), inv_e = c_inv(0, 0), inv_e_nu = c_inv(0, 1);
+  const double two_inv_e_nu = 2.0 * inv_e_nu, inv_g = c_inv(2, 2);
+  const double sy_virgin = material.hardening().yield_stress(0.0);  // σy(ᾱ ≤ 0), the table's first point
+
+  Lanes force[16], viscous_force[16];
+  for (int k = 0; k < 16; ++k) {
+    force[k] = Lanes{};
+    if (viscous)
+      viscous_force[k] = Lanes{(*lane[0].viscous->force)(k), (*lane[1].viscous->force)(k),
+                               (*lane[2].viscous->force)(k), (*lane[3].viscous->force)(k)};
+  }
+  Lanes elastic_energy{};
+  double plastic_work[kCps8Lanes] = {0, 0, 0, 0};
+  PointLanes pt[9];
+
+  for (int i = 0; i < np; ++i) {
+    Lanes de0 = e0[i], de1 = e1[i];
+    const Lanes de2 = e2[i];
+    if (selective) {
+      Lanes tr_bar{};
+      for (int r = 0; r < 4; ++r) tr_bar += in.barlow[i][r] * tr_r[r];
+      const Lanes corr = 0.5 * ((tr_bar - de0) - de1);
+      de0 += corr;
+      de1 += corr;
+    }
+    // Material: elastic trial S = S_n + C ΔE and the yield check of update_stress().
+    Lanes sn[4], history[4], sy;
+    {
+      const double* state[kCps8Lanes];
+      for (int l = 0; l < kCps8Lanes; ++l) state[l] = reinterpret_cast<const double*>(&lane[l].committed[i]);
+      gather_transposed<kShuffle>(state, kStressAt, sn);     // S_n (3), —
+      gather_transposed<kShuffle>(state, kHistoryAt, history);  // —, ᾱ, —, λ3
+    }
+    const Lanes sn0 = sn[0], sn1 = sn[1], sn2 = sn[2], thickness = history[3];
+    for (int l = 0; l < kCps8Lanes; ++l)
+      sy[l] = history[1][l] <= 0.0 ? sy_virgin : material.hardening().yield_stress(history[1][l]);
+    Lanes t0 = (sn0 + c11 * de0) + c12 * de1, t1 = (sn1 + c12 * de0) + c11 * de1, t2 = sn2 + shear * de2;
+    const Lanes xi_trial = 2.0 / 3.0 * ((t0 * t0 + t1 * t1) - t0 * t1) + (2.0 * t2) * t2;
+    const LaneMask elastic = 0.5 * xi_trial - (sy * sy) * (1.0 / 3.0) <= (1e-12 * sy) * sy;
+    Lanes energy = 0.5 * ((inv_e * (t0 * t0 + t1 * t1) + (two_inv_e_nu * t0) * t1) + (inv_g * t2) * t2);
+    Lanes strain33 = inv_e_nu * (((t0 + t1) - sn0) - sn1);
+    const Lanes w = in.weight[i] * thickness;
+    // Trial history (start_trial of cps8_force.cpp); lanes that yield take the scalar return
+    // mapping of update_stress() on the same ΔE.
+    for (int l = 0; l < kCps8Lanes; ++l) {
+      const PointState& cs = lane[l].committed[i];
+      PointState& ts = lane[l].trial[i];
+      if (elastic[l]) {
+        ts.plastic_strain = cs.plastic_strain + Vec3::Zero();
+        ts.peeq = cs.peeq;
+        ts.plastic_work = cs.plastic_work + w[l] * 0.0;
+      } else {
+        const J2Update up = material.update_stress(Vec3(de0[l], de1[l], de2[l]), cs);
+        t0[l] = up.stress(0);
+        t1[l] = up.stress(1);
+        t2[l] = up.stress(2);
+        energy[l] = up.elastic_energy;
+        strain33[l] = up.strain33_increment;
+        ts.plastic_strain = cs.plastic_strain + up.plastic_increment;
+        ts.peeq = up.peeq;
+        ts.plastic_work = cs.plastic_work + w[l] * up.dissipation;
+      }
+      plastic_work[l] += ts.plastic_work;
+    }
+    // point_stress(): S, selective S − p I with w p M_r into q_r.
+    Lanes s00 = t0, s11 = t1;
+    const Lanes s01 = t2;
+    if (selective) {
+      const Lanes p = 0.5 * (t0 + t1);
+      s00 -= p;
+      s11 -= p;
+      for (int r = 0; r < 4; ++r) q_r[r] += (w * p) * in.barlow[i][r];
+    }
+    // A = f s, its nodal force w A ∇N_a (and the bulk-viscous q w f ∇N_a) on every node.
+    const Lanes a00 = f00[i] * s00 + f01[i] * s01, a01 = f00[i] * s01 + f01[i] * s11;
+    const Lanes a10 = f10[i] * s00 + f11[i] * s01, a11 = f10[i] * s01 + f11[i] * s11;
+    const Lanes wa00 = w * a00, wa10 = w * a10, wa01 = w * a01, wa11 = w * a11;
+    if (viscous) {
+      const Lanes cb = q[i] * in.weight[i];
+      const Lanes b00 = cb * f00[i], b10 = cb * f10[i], b01 = cb * f01[i], b11 = cb * f11[i];
+      for (int k = 0; k < 8; ++k) {
+        const Lanes nx = in.d[i][k][0], ny = in.d[i][k][1];
+        force[2 * k] += wa00 * nx + wa01 * ny;
+        force[2 * k + 1] += wa10 * nx + wa11 * ny;
+        viscous_force[2 * k] += b00 * nx + b01 * ny;
+        viscous_force[2 * k + 1] += b10 * nx + b11 * ny;
+      }
+    } else {
+      for (int k = 0; k < 8; ++k) {
+        const Lanes nx = in.d[i][k][0], ny = in.d[i][k][1];
+        force[2 * k] += wa00 * nx + wa01 * ny;
+        force[2 * k + 1] += wa10 * nx + wa11 * ny;
+      }
+    }
+    elastic_energy += w * energy;
+    pt[i] = PointLanes{f00[i], f01[i], f10[i], f11[i], t0, t1, t2, 1.0 + 2.0 * strain33};
+  }
+
+  // Push-forward σ = f S fᵀ / (det f λ3), λ3 = √max(1e-12, 1 + 2ΔE33) (finish_trial).
+  for (int i = 0; i < np; ++i) {
+    const PointLanes& p = pt[i];
+    const LaneMask floor = 1e-12 < p.stretch;
+    Lanes l3 = floor ? p.stretch : Lanes{} + 1e-12;
+    for (int l = 0; l < kCps8Lanes; ++l) l3[l] = std::sqrt(l3[l]);
+    const Lanes det = p.f00 * p.f11 - p.f10 * p.f01;
+    const Lanes m00 = p.f00 * p.s0 + p.f01 * p.s2, m01 = p.f00 * p.s2 + p.f01 * p.s1;
+    const Lanes m10 = p.f10 * p.s0 + p.f11 * p.s2, m11 = p.f10 * p.s2 + p.f11 * p.s1;
+    const Lanes scale = det * l3;
+    const Lanes sigma00 = (m00 * p.f00 + m01 * p.f01) / scale, sigma11 = (m10 * p.f10 + m11 * p.f11) / scale,
+                sigma01 = (m00 * p.f10 + m01 * p.f11) / scale;
+    for (int l = 0; l < kCps8Lanes; ++l) {
+      PointState& ts = lane[l].trial[i];
+      ts.stress = Vec3(sigma00[l], sigma11[l], sigma01[l]);
+      ts.thickness_stretch = lane[l].committed[i].thickness_stretch * l3[l];
+    }
+  }
+  // Selective: the volumetric force q_r f_r ∇N^r_a of the reduced points.
+  for (int r = 0; r < nr; ++r) {
+    const int i = np + r;
+    const Lanes b00 = q_r[r] * f00[i], b10 = q_r[r] * f10[i], b01 = q_r[r] * f01[i], b11 = q_r[r] * f11[i];
+    for (int k = 0; k < 8; ++k) {
+      const Lanes nx = in.d[i][k][0], ny = in.d[i][k][1];
+      force[2 * k] += b00 * nx + b01 * ny;
+      force[2 * k + 1] += b10 * nx + b11 * ny;
+    }
+  }
+
+  double* f[kCps8Lanes];
+  for (int l = 0; l < kCps8Lanes; ++l) f[l] = lane[l].out->force.data();
+  for (int k = 0; k < 16; k += 4) scatter_transposed<kShuffle>(&force[k], k, f);
+  if (viscous) {
+    for (int l = 0; l < kCps8Lanes; ++l) f[l] = lane[l].viscous->force->data();
+    for (int k = 0; k < 16; k += 4) scatter_transposed<kShuffle>(&viscous_force[k], k, f);
+  }
+  for (int l = 0; l < kCps8Lanes; ++l) {
+    lane[l].out->elastic_energy = elastic_energy[l];
+    lane[l].out->plastic_work = plastic_work[l];
+  }
+}
+
+}  // namespace
+
+void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& material) {
+  force_lanes<false>(group, material);
+}
+
+// AVX2 without FMA: "avx2" implies AVX but not FMA in GCC, so no product is fused into a sum
+// (-ffp-contract=fast would fuse them if FMA were enabled, and the lanes would round
+// differently from the scalar kernel).
+#if defined(__x86_64__) || defined(__i386__)
+[[gnu::target("avx2")]] void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
+  force_lanes<true>(group, material);
+}
+#else
+void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
+  force_lanes<false>(group, material);
+}
+#endif
+
+bool cps8_lanes_bitwise_build() {
+#ifdef __FMA__
+  return false;
+#else
+  return true;
+#endif
+}
+
+bool cps8_lanes_avx2_available() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+// Without AVX2 the portable copy is slower than cps8_force() element by element (its 4-wide
+// operations are two SSE2 halves, as the scalar kernel's 2-wide ones; README "Performance"):
+// the elements then go one by one — bitwise the same results either way.
+void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material) {
+  static const bool avx2 = cps8_lanes_bitwise_build() && cps8_lanes_avx2_available();
+  if (avx2) {
+    cps8_force_lanes_avx2(group, material);
+    return;
+  }
+  for (const Cps8Lane& l : group) cps8_force(*l.geo, l.du, l.committed, l.trial, material, *l.out, l.viscous);
+}
+
+}  // namespace ringcrush::fe

@@ -1,0 +1,56 @@
+// The force-only CPS8 kernel on four elements at once (issue 4 performance, README
+// "Performance"): one vector lane per element, each lane doing exactly the operations of
+// cps8_force() (cps8_force.cpp) in the same order, so that every bit of every result —
+// force, bulk-viscous force, energies, trial states — is that of cps8_force() on the element
+// alone (tests/fe/cps8_force_lanes_test.cpp). The explicit step is the same physics, only
+// four elements share each instruction.
+//
+// Why across elements: within one element the kernel is a chain of dependent sums (the 8
+// nodes of f, the 9 points of the force) that keeps 2-wide operations at best; four elements
+// are independent, so every operation of the kernel is 4-wide with no rearrangement.
+//
+// Points whose trial stress reaches the yield surface take the scalar return mapping
+// (J2PlaneStress::update_stress) lane by lane; the elastic trial, the common case, is
+// vectorised.
+//
+// Instruction sets: two copies are compiled — portable (the 4-wide operations as two SSE2
+// halves) and AVX2 WITHOUT fused multiply–add (which would round differently) — and
+// cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force() element by
+// element (the portable copy measured slower than that; README "Performance", session 8), so
+// one binary gives the same bits on every x86-64.
+#pragma once
+
+#include <array>
+
+#include "fe/element/cps8_element.hpp"
+
+namespace ringcrush::fe {
+
+constexpr int kCps8Lanes = 4;
+
+// One element of a lane group: the arguments of cps8_force().
+struct Cps8Lane {
+  const Cps8Geometry* geo = nullptr;
+  const double* du = nullptr;  // 16 displacement increments
+  const PointState* committed = nullptr;
+  PointState* trial = nullptr;
+  Cps8Output* out = nullptr;
+  const BulkViscousLoad* viscous = nullptr;  // all four set or all four null
+};
+using Cps8LaneGroup = std::array<Cps8Lane, kCps8Lanes>;
+
+// cps8_force() on four elements of one integration rule. Throws std::invalid_argument if the
+// lanes mix rules or mix bulk viscosity on and off.
+void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material);
+
+// The two compiled copies (tests: both must be bitwise cps8_force()); the AVX2 one only where
+// cps8_lanes_avx2_available().
+void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& material);
+void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material);
+bool cps8_lanes_avx2_available();
+// False in a build with fused multiply–add (RINGCRUSH_NATIVE on an FMA CPU): Eigen then fuses
+// the scalar kernel's 2×2 products into their sums and the lanes (which never fuse) would round
+// differently, so cps8_force_lanes() goes element by element there.
+bool cps8_lanes_bitwise_build();
+
+}  // namespace ringcrush::fe

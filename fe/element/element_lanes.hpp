@@ -1,0 +1,56 @@
+// Four elements on the lanes of one vector (cps8_force_lanes.hpp, geometry_update.hpp): the
+// vector type and its gathers from / scatters to the elements' own arrays. Internal to the
+// lane kernels; every function is always inlined so that it is compiled for the instruction
+// set of the kernel that uses it (portable or AVX2).
+#pragma once
+
+namespace ringcrush::fe::lanes {
+
+typedef double Lanes __attribute__((vector_size(32)));  // one double per element of the group
+typedef long long LaneMask __attribute__((vector_size(32)));
+// Four consecutive doubles anywhere in memory, read or written as one vector (an unaligned
+// vector load/store; memcpy went through the stack in two halves, and the full-width reload
+// of the halves stalled on store forwarding — perf).
+typedef double UnalignedLanes __attribute__((vector_size(32), aligned(8), may_alias));
+
+// r[l] = {c[0][l], c[1][l], c[2][l], c[3][l]}: the 4 × 4 transpose of lanes in registers.
+[[gnu::always_inline]] inline void transpose4(const Lanes* c, Lanes* r) {
+  const Lanes t0 = __builtin_shuffle(c[0], c[1], LaneMask{0, 4, 2, 6});
+  const Lanes t1 = __builtin_shuffle(c[0], c[1], LaneMask{1, 5, 3, 7});
+  const Lanes t2 = __builtin_shuffle(c[2], c[3], LaneMask{0, 4, 2, 6});
+  const Lanes t3 = __builtin_shuffle(c[2], c[3], LaneMask{1, 5, 3, 7});
+  r[0] = __builtin_shuffle(t0, t2, LaneMask{0, 1, 4, 5});
+  r[1] = __builtin_shuffle(t1, t3, LaneMask{0, 1, 4, 5});
+  r[2] = __builtin_shuffle(t0, t2, LaneMask{2, 3, 6, 7});
+  r[3] = __builtin_shuffle(t1, t3, LaneMask{2, 3, 6, 7});
+}
+
+// c[m] = {p[0][at + m], p[1][at + m], p[2][at + m], p[3][at + m]}, m = 0..3: four vector
+// loads and a 4 × 4 transpose (unpack the pairs, then swap the halves).
+// Without AVX (two SSE2 halves per vector) a cross-half shuffle is lowered to single
+// values through memory, and lanes filled one value at a time load straight into the halves:
+// that copy gathers value by value.
+template <bool kShuffle>
+[[gnu::always_inline]] inline void gather_transposed(const double* const* p, int at, Lanes* c) {
+  if constexpr (kShuffle) {
+    Lanes r[4];
+    for (int e = 0; e < 4; ++e) r[e] = *reinterpret_cast<const UnalignedLanes*>(p[e] + at);
+    transpose4(r, c);
+  } else {
+    for (int m = 0; m < 4; ++m) c[m] = Lanes{p[0][at + m], p[1][at + m], p[2][at + m], p[3][at + m]};
+  }
+}
+// The inverse: p[l][at + m] = c[m][l].
+template <bool kShuffle>
+[[gnu::always_inline]] inline void scatter_transposed(const Lanes* c, int at, double* const* p) {
+  if constexpr (kShuffle) {
+    Lanes r[4];
+    transpose4(c, r);
+    for (int l = 0; l < 4; ++l) *reinterpret_cast<UnalignedLanes*>(p[l] + at) = r[l];
+  } else {
+    for (int l = 0; l < 4; ++l)
+      for (int m = 0; m < 4; ++m) p[l][at + m] = c[m][l];
+  }
+}
+
+}  // namespace ringcrush::fe::lanes
