@@ -162,19 +162,8 @@ class Level1Chain final : public HybridSystem {
         free_.push_back(i);
       }
     for (int j = n_; j < nq_; ++j) free_.push_back(j);
-    const auto nf = static_cast<Eigen::Index>(free_.size());
     qdd.setZero(nq_);
-    if (nf > 0) {
-      mf_.resize(nf, nf);
-      rf_.resize(nf);
-      for (Eigen::Index i = 0; i < nf; ++i) {
-        rf_(i) = r_(free_[i]);
-        for (Eigen::Index j = 0; j < nf; ++j) mf_(i, j) = m_(free_[i], free_[j]);
-      }
-      llt_.compute(mf_);
-      rf_ = llt_.solve(rf_);
-      for (Eigen::Index i = 0; i < nf; ++i) qdd(free_[i]) = rf_(i);
-    }
+    free_solve_.solve(m_, r_, free_, qdd);
     for (int i = 0; i < n_; ++i)
       if (mode_[i] != RingMode::Crushing) lambda(i) = r_(i) - m_.row(i).dot(qdd);
   }
@@ -451,9 +440,9 @@ class Level1Chain final : public HybridSystem {
   std::vector<RingMode> mode_, mode_before_;
   std::vector<double> strength_;
   double impact_loss_ = 0.0, arrest_time_ = -1.0;
-  Eigen::MatrixXd m_, mf_;
-  Eigen::VectorXd b_, a_, w_, r_, rf_, qdd_, lambda_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd m_;
+  Eigen::VectorXd b_, a_, w_, r_, qdd_, lambda_;
+  FreeMassSolve free_solve_;
   std::vector<Eigen::Index> free_;
   std::vector<double> c_, sq_;
 };

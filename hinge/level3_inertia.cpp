@@ -139,18 +139,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
         free_.push_back(i);
       }
     qdd_.setZero(n_);
-    const auto nf = static_cast<Eigen::Index>(free_.size());
-    if (nf > 0) {
-      mf_.resize(nf, nf);
-      rf_.resize(nf);
-      for (Eigen::Index a = 0; a < nf; ++a) {
-        rf_(a) = r_(free_[a]);
-        for (Eigen::Index c = 0; c < nf; ++c) mf_(a, c) = mm_(free_[a], free_[c]);
-      }
-      llt_.compute(mf_);
-      rf_ = llt_.solve(rf_);
-      for (Eigen::Index a = 0; a < nf; ++a) qdd_(free_[a]) = rf_(a);
-    }
+    free_solve_.solve(mm_, r_, free_, qdd_);
     for (int i = 0; i < n_; ++i)
       if (motion_[i] != RingMotion::Crushing) lambda_(i) = r_(i) - mm_.row(i).dot(qdd_);
   }
@@ -431,9 +420,9 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   std::vector<int> mech_;  // ring i's current mechanism slot (kM·i + mode)
   std::vector<double> strength_;
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
-  Eigen::MatrixXd m0_, mm_, mf_;
-  Eigen::VectorXd b_, r_, rf_, qdd_, lambda_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd m0_, mm_;
+  Eigen::VectorXd b_, r_, qdd_, lambda_;
+  FreeMassSolve free_solve_;
   std::vector<Eigen::Index> free_;
 };
 

@@ -52,4 +52,19 @@ MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd&
   }
 }
 
+void FreeMassSolve::solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
+                          const std::vector<Eigen::Index>& free, Eigen::VectorXd& x) {
+  const auto nf = static_cast<Eigen::Index>(free.size());
+  if (nf == 0) return;
+  mf_.resize(nf, nf);
+  rf_.resize(nf);
+  for (Eigen::Index i = 0; i < nf; ++i) {
+    rf_(i) = r(free[i]);
+    for (Eigen::Index j = 0; j < nf; ++j) mf_(i, j) = mass(free[i], free[j]);
+  }
+  llt_.compute(mf_);
+  rf_ = llt_.solve(rf_);
+  for (Eigen::Index i = 0; i < nf; ++i) x(free[i]) = rf_(i);
+}
+
 }  // namespace ringcrush::hinge

@@ -31,4 +31,19 @@ MassLcpResult solve_mass_lcp(const Eigen::MatrixXd& mass, const Eigen::VectorXd&
                              const std::vector<char>& zero,
                              const std::vector<char>& prefer_free = {});
 
+// Accelerations of the coordinates that move, the others held (the acceleration level once
+// the LCP has decided who moves): 𝓜_ff ẍ_f = r_f, written into x at the free indices (the
+// caller zeroes the held ones). Its buffers live between calls: it runs at every right-hand
+// side of Level 1 and of the inertial Level 3 chain.
+class FreeMassSolve {
+ public:
+  void solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
+             const std::vector<Eigen::Index>& free, Eigen::VectorXd& x);
+
+ private:
+  Eigen::MatrixXd mf_;
+  Eigen::VectorXd rf_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
 }  // namespace ringcrush::hinge
