@@ -88,6 +88,14 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
   const double dt = options.output_interval_s;
   bool go = recorder.sample(0.0, y.data());
 
+  // IDA and the central difference both advance to each output time and are sampled there.
+  const auto march = [&](auto& stepper) {
+    for (long k = 1; go; ++k) {
+      const double t = stepper.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
+      go = recorder.sample(t, stepper.y().data()) && t < options.end_time_s;
+    }
+    y = stepper.y();
+  };
   if (options.integrator == PolygonIntegrator::Ida) {
     PolygonIdaOptions io;
     io.relative_tolerance = options.relative_tolerance;
@@ -100,11 +108,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     io.velocity_tolerance_factor = options.velocity_tolerance_factor;
     io.plastic_tolerance_factor = options.plastic_tolerance_factor;
     PolygonIdaSolver ida(chain, 0.0, y, io);
-    for (long k = 1; go; ++k) {
-      const double t = ida.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
-      go = recorder.sample(t, ida.y().data()) && t < options.end_time_s;
-    }
-    y = ida.y();
+    march(ida);
     const auto s = ida.statistics();
     out.steps = s.steps;
     out.rejected_steps = s.error_test_failures + s.nonlinear_convergence_failures;
@@ -118,11 +122,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     co.safety = options.central_difference_safety;
     co.max_step_s = options.max_step_s;
     PolygonCentralDifference cd(chain, 0.0, y, co);
-    for (long k = 1; go; ++k) {
-      const double t = cd.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
-      go = recorder.sample(t, cd.y().data()) && t < options.end_time_s;
-    }
-    y = cd.y();
+    march(cd);
     const auto& s = cd.statistics();
     out.steps = s.steps;
     out.rhs_evaluations = s.rhs_evaluations;
