@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <regex>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,18 @@ inline fs::path edited_scene(const std::string& source, const fs::path& out, con
   for (const auto& [pattern, value] : edits) text = std::regex_replace(text, std::regex(pattern), value);
   std::ofstream(out) << text;
   return out;
+}
+
+// The text of `source` (relative to the source tree) with `lines` inserted at the top of its
+// `[table]` section: a shipped scene with a few keys added, parsed in memory by the scene
+// tests (parse_scene) so that they follow the shipped file.
+inline std::string scene_text_with(const std::string& source, const std::string& table, const std::string& lines) {
+  std::string text = read_text(fs::path(RINGCRUSH_SOURCE_DIR) / source);
+  const std::string header = "[" + table + "]\n";
+  const auto at = text.find(header);
+  if (at == std::string::npos) throw std::runtime_error(source + " has no " + header);
+  text.insert(at + header.size(), lines + "\n");
+  return text;
 }
 
 }  // namespace test_files

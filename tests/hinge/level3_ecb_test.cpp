@@ -5,9 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 #include "compare/hinge_run_level3.hpp"
@@ -15,6 +13,7 @@
 #include "hinge/level3_ecb.hpp"
 #include "hinge/level3_mechanism.hpp"
 #include "hinge/level3_travelling_e.hpp"
+#include "test_files.hpp"
 
 using namespace ringcrush::hinge;
 using std::numbers::pi;
@@ -272,13 +271,10 @@ TEST(Level3Ecb, Test30At27MetresPerSecondIsUnchanged) {
 // [hinge] level3_ring_under = "bottom" | "least_load" (default) reaches the run; other values
 // are scene errors naming the key.
 TEST(Level3Ecb, SceneOptionReachesTheRun) {
-  std::ifstream f(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
-  std::stringstream buf;
-  buf << f.rdbuf();
-  const std::string text = buf.str();
-  const auto pos = text.find("[hinge]");
-  ASSERT_NE(pos, std::string::npos);
-  auto with = [&](const std::string& line) { return text.substr(0, pos + 7) + "\n" + line + text.substr(pos + 7); };
+  const std::string text = test_files::read_text(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  auto with = [](const std::string& line) {
+    return test_files::scene_text_with("data/scenes/test30_welded.toml", "hinge", line);
+  };
   using ringcrush::compare::level3_input;
   using ringcrush::compare::parse_scene;
   EXPECT_EQ(level3_input(parse_scene(text, "t30.toml"), {}).ring_under, Level3RingUnder::LeastLoad);

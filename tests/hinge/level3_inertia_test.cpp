@@ -5,13 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "chain_fixtures.hpp"
 #include "compare/hinge_run_level3.hpp"
 #include "hinge/level3_mechanism.hpp"
+#include "test_files.hpp"
 
 using namespace ringcrush;
 using namespace ringcrush::hinge;
@@ -108,13 +107,10 @@ TEST(Level3Inertia, BadInput) {
   in.ring_mass_kg = std::nan("");
   EXPECT_THROW(in.validate(), std::invalid_argument);
 
-  std::ifstream f(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
-  std::stringstream buf;
-  buf << f.rdbuf();
-  const std::string scene = buf.str();
-  const auto pos = scene.find("[hinge]");
-  ASSERT_NE(pos, std::string::npos);
-  auto text = [&](const std::string& line) { return scene.substr(0, pos + 7) + "\n" + line + scene.substr(pos + 7); };
+  const std::string scene = test_files::read_text(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  auto text = [](const std::string& line) {
+    return test_files::scene_text_with("data/scenes/test30_welded.toml", "hinge", line);
+  };
   const auto on = compare::parse_scene(text("level3_inertia = true"), "t30.toml");
   EXPECT_TRUE(compare::level3_input(on, {}).inertia);
   EXPECT_GT(compare::level3_input(on, {}).ring_mass_kg, 0.0);

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +14,7 @@
 #include "compare/scene.hpp"
 #include "hinge/level3_mechanism.hpp"
 #include "hinge/level3_travelling_e.hpp"
+#include "test_files.hpp"
 
 using namespace ringcrush::hinge;
 using std::numbers::pi;
@@ -176,13 +175,10 @@ TEST(Level3TravellingE, ChainWithShearFreeEIsUnchangedAndPlacesE) {
 // The scene option: [hinge] level3_hinge_e = "fixed" (default) | "shear_free" reaches the
 // Level 3 input; any other value is a scene error naming the key.
 TEST(Level3TravellingE, SceneOptionReachesTheRunAndBadValuesAreRejected) {
-  std::ifstream f(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
-  std::stringstream buf;
-  buf << f.rdbuf();
-  const std::string text = buf.str();
-  const auto pos = text.find("[hinge]");
-  ASSERT_NE(pos, std::string::npos);
-  auto with = [&](const std::string& line) { return text.substr(0, pos + 7) + "\n" + line + text.substr(pos + 7); };
+  const std::string text = test_files::read_text(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
+  auto with = [](const std::string& line) {
+    return test_files::scene_text_with("data/scenes/test30_welded.toml", "hinge", line);
+  };
   const auto plain = ringcrush::compare::parse_scene(text, "t30.toml");
   EXPECT_EQ(ringcrush::compare::level3_input(plain, {}).hinge_e, Level3HingeE::Fixed);
   const auto sf = ringcrush::compare::parse_scene(with("level3_hinge_e = \"shear_free\""), "t30.toml");

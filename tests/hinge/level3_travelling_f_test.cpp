@@ -4,14 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <numbers>
 
 #include "compare/hinge_run_level3.hpp"
 #include "compare/measures.hpp"
 #include "compare/run_output.hpp"
 #include "hinge/level3_mechanism.hpp"
+#include "test_files.hpp"
 
 using namespace ringcrush;
 using namespace ringcrush::hinge;
@@ -189,13 +188,9 @@ TEST(Level3TravellingF, FixedThetaAndShearFreeConflict) {
 // The scene keys ([hinge] level3_hinge_f, level3_theta_f_deg) reach the run, and a fixed θ_F
 // with the shear-free placement, or a θ_F outside (90°, 180°), is refused naming the key.
 TEST(Level3TravellingF, SceneKeysSelectHowFIsPlaced) {
-  std::ifstream in(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
-  const std::string base((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  auto with_hinge = [&](const std::string& keys) {
-    const std::string anchor = "[hinge]\n";
-    std::string t = base;
-    t.insert(t.find(anchor) + anchor.size(), keys);
-    return compare::parse_scene(t, "level3.toml");
+  auto with_hinge = [](const std::string& keys) {
+    return compare::parse_scene(test_files::scene_text_with("data/scenes/test30_welded.toml", "hinge", keys),
+                                "level3.toml");
   };
   const auto sf = with_hinge("level3_hinge_f = \"shear_free\"\n");
   EXPECT_EQ(compare::level3_input(sf).hinge_f, Level3HingeF::ShearFree);
