@@ -68,6 +68,12 @@ std::vector<std::string> explain_fe(const Scene& s) {
                                 ? "the assembled power-iteration estimate of omega_max"
                                 : "the element/contact stability bound",
                             chain.step_bound == fe::StepBound::Assembled ? "assembled" : "element"));
+  if (solver.scheme == fe::DynamicScheme::Explicit && chain.mass_scaling.active())
+    e.push_back(fmt::format("MASS SCALING, a change of the physics (fe.mass_scaling_dt = {:g} s, fe.mass_scaling_factor "
+                            "= {:g}): every element's density x the factor, then every element whose own step "
+                            "(safety included) is below the target x (target/step)^2; the added mass, the elements "
+                            "scaled and the steps still below the target are reported",
+                            chain.mass_scaling.target_step_s, chain.mass_scaling.factor));
   else
     e.push_back(fmt::format("implicit HHT-alpha (alpha = {:g}): lumped mass, tangent and sparse LDLT per Newton "
                             "iteration, half-step residual control with HAFTOL {:g} N (fe.solver = \"hht\")",

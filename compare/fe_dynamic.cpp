@@ -114,6 +114,15 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   // the explicit driver announces); HHT ignores it.
   in.bulk_viscosity = s.fe.bulk_viscosity;
   in.step_bound = s.fe.step_bound == ExplicitStepBound::Assembled ? fe::StepBound::Assembled : fe::StepBound::Element;
+  // Mass scaling: explicit only (fe/dynamics/mass_scaling.hpp), refused with HHT by name.
+  in.mass_scaling.target_step_s = s.fe.mass_scaling_dt;
+  in.mass_scaling.factor = s.fe.mass_scaling_factor;
+  in.mass_scaling.safety = s.fe.explicit_safety;
+  if (s.fe.solver != FeSolver::Explicit && in.mass_scaling.active())
+    throw std::invalid_argument(fmt::format(
+        "fe dynamic: fe.mass_scaling_dt = {} s, fe.mass_scaling_factor = {} with fe.solver = \"hht\": mass scaling is "
+        "for the explicit solver only (use --solver explicit, or remove the keys)",
+        s.fe.mass_scaling_dt, s.fe.mass_scaling_factor));
   fe::validate(in);
   return in;
 }
@@ -261,6 +270,24 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
                        {"elements_through", s.fe.elements_through}};
   const auto alt = alternation(out.crush_ratio);
   out.extra["alternates"] = alt.index > alternation_threshold;
+  // Mass scaling changes the physics: what was added is reported with every scaled run
+  // (whole chain; the impactor's mass for scale).
+  if (r.mass_scaling.active) {
+    const auto& ms = r.mass_scaling;
+    const double impactor = s.impactor ? s.impactor->mass_kg : 0.0;
+    out.extra["mass_scaling"] = {
+        {"target_step_s", ms.target_step_s},
+        {"factor", ms.factor},
+        {"elements_scaled", ms.scaled_elements},
+        {"elements", ms.elements},
+        {"rings_mass_kg", ms.element_mass_kg},
+        {"added_mass_kg", ms.added_mass_kg},
+        {"added_mass_percent_of_rings", ms.element_mass_kg > 0 ? 100 * ms.added_mass_kg / ms.element_mass_kg : 0.0},
+        {"added_mass_over_impactor_mass", impactor > 0 ? ms.added_mass_kg / impactor : 0.0},
+        {"min_element_step_unscaled_s", ms.min_element_step_s},
+        {"min_element_step_scaled_s", ms.min_scaled_element_step_s},
+        {"steps_below_target", r.statistics.steps_below_mass_scaling_target}};
+  }
   return out;
 }
 

@@ -23,6 +23,12 @@ fe::FeInput fe_static_input(const Scene& s) {
                                             s.rings.count));
   if (s.rings.section != SectionState::PlaneStress)
     throw std::invalid_argument("fe static: CPS8 is a plane-stress element; set rings.section = \"plane_stress\"");
+  // A static crush has no mass to scale: refuse the explicit-only option rather than ignore it.
+  if (s.fe.mass_scaling_dt != 0.0 || s.fe.mass_scaling_factor != 1.0)
+    throw std::invalid_argument(fmt::format(
+        "fe static: fe.mass_scaling_dt = {} s, fe.mass_scaling_factor = {}: mass scaling is for the explicit dynamic "
+        "solver only (a static run has no mass)",
+        s.fe.mass_scaling_dt, s.fe.mass_scaling_factor));
   fe::FeInput in;
   in.ring.outer_radius_m = 0.5 * s.rings.outer_diameter_m;
   in.ring.inner_radius_m = in.ring.outer_radius_m - s.rings.wall_thickness_m;

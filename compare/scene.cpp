@@ -367,6 +367,12 @@ Scene parse_scene(const std::string& text, const std::string& file) {
         f.step_bound);
     f.bulk_viscosity = r.number("bulk_viscosity", f.bulk_viscosity);
     require(f.bulk_viscosity >= 0 && f.bulk_viscosity < 1, r, "bulk_viscosity", "must lie in [0, 1)");
+    f.mass_scaling_dt = r.number("mass_scaling_dt", f.mass_scaling_dt);
+    require(std::isfinite(f.mass_scaling_dt) && f.mass_scaling_dt >= 0, r, "mass_scaling_dt",
+            "must be >= 0 s (0: off)");
+    f.mass_scaling_factor = r.number("mass_scaling_factor", f.mass_scaling_factor);
+    require(std::isfinite(f.mass_scaling_factor) && f.mass_scaling_factor >= 1, r, "mass_scaling_factor",
+            "must be >= 1 (1: off)");
     f.energy_error_limit = r.number("energy_error_limit", f.energy_error_limit);
     require(f.energy_error_limit > 0, r, "energy_error_limit", "must be positive");
     r.finish();

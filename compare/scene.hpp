@@ -105,6 +105,11 @@ struct FeSettings {
   // on the thesis scene, an estimate times a margin, not a bound).
   ExplicitStepBound step_bound = ExplicitStepBound::Element;
   double bulk_viscosity = 0.06;      // explicit: linear bulk viscosity b1 (ABAQUS/Explicit default)
+  // Explicit only, off by default (a change of the physics; fe/dynamics/mass_scaling.hpp):
+  // ABAQUS *FIXED MASS SCALING, DT= / TYPE=BELOW MIN (target step, s; 0 = off) and FACTOR= /
+  // TYPE=UNIFORM (density multiplier ≥ 1; 1 = off).
+  double mass_scaling_dt = 0.0;
+  double mass_scaling_factor = 1.0;
   double energy_error_limit = 0.05;  // stop when |balance error| / KE0 exceeds this
 };
 

@@ -49,6 +49,7 @@ struct FeOptions {
   double end_time_s = 0;    // > 0: overrides analysis.end_time_s of a dynamic scene (timings)
   int threads = 0;          // element-loop threads of a dynamic run (0: automatic, chain_input.hpp)
   std::string step_bound;   // explicit: "element" (default) | "assembled" (fe/chain/chain_input.hpp)
+  double mass_scaling_dt = -1;  // ≥ 0: overrides fe.mass_scaling_dt (explicit; 0 = off)
 };
 
 const char* integration_name(fe::Integration i) {
@@ -105,6 +106,11 @@ Scene scene_with_overrides(const FeOptions& o) {
     if (s.analysis.type == AnalysisType::Static)
       throw std::invalid_argument("ringcrush fe: --solver applies to dynamic scenes only");
     s.fe.solver = o.solver == "hht" ? FeSolver::Hht : FeSolver::Explicit;
+  }
+  if (o.mass_scaling_dt >= 0) {
+    if (s.analysis.type == AnalysisType::Static)
+      throw std::invalid_argument("ringcrush fe: --mass-scaling-dt applies to dynamic scenes (explicit solver) only");
+    s.fe.mass_scaling_dt = o.mass_scaling_dt;
   }
   if (o.end_time_s > 0) {
     if (s.analysis.type == AnalysisType::Static)
@@ -185,6 +191,10 @@ void add_fe_command(CLI::App& app) {
   cmd->add_option("--step-bound", o->step_bound,
                   "Explicit: stable-step omega_max from the element bound or the assembled power-iteration estimate")
       ->check(CLI::IsMember({"element", "assembled"}));
+  cmd->add_option("--mass-scaling-dt", o->mass_scaling_dt,
+                  "Explicit: fixed mass scaling to this target step (s; 0 off), overrides fe.mass_scaling_dt "
+                  "(changes the physics: the added mass is reported)")
+      ->check(CLI::NonNegativeNumber);
   cmd->callback([o] { run_fe(*o); });
 }
 

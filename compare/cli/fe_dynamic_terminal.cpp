@@ -69,6 +69,10 @@ void echo_dynamic(const Scene& s, const fe::ChainInput& c, const fe::DynamicSolv
                c.step_bound == fe::StepBound::Assembled ? "assembled power-iteration estimate"
                                                         : "element + contact bound",
                d.stable_step_every, c.bulk_viscosity);
+  if (c.mass_scaling.active())
+    fmt::print("  MASS SCALING (changes the physics): target step {:.4g} s (elements below it scaled up to it), "
+               "uniform factor {:g}\n",
+               c.mass_scaling.target_step_s, c.mass_scaling.factor);
   fmt::print("  end: at rest (KE < {:g} of KE0 and the impactor stopped){} or at {:g} ms; energy error limit {:g}; "
              "{} frames\n",
              d.rest_kinetic_fraction, d.stop_at_rest ? "" : " [disabled]", 1e3 * d.end_time_s,
@@ -107,6 +111,17 @@ void print_dynamic_result(const Scene& s, const fe::DynamicResult& r, const RunR
              st.step_limited_by.empty() ? "" : "; stable step limited by " + st.step_limited_by);
   fmt::print("energy: balance error {:.3f} % of KE0 ({:.3f} J), numerical dissipation {:.3f} %\n",
              100 * r.energy_balance_error, r.initial_kinetic_j, 100 * r.numerical_dissipation);
+  if (r.mass_scaling.active) {
+    const auto& ms = r.mass_scaling;
+    const double impactor = s.impactor ? s.impactor->mass_kg : 0.0;
+    fmt::print("mass scaling: {} of {} elements scaled (target {:.4g} s, factor {:g}; smallest element step {:.4g} -> "
+               "{:.4g} s); added {:.4g} kg = {:.1f} % of the rings' {:.4g} kg = {:.2f} x the impactor's {:.4g} kg; "
+               "{} steps below the target\n",
+               ms.scaled_elements, ms.elements, ms.target_step_s, ms.factor, ms.min_element_step_s,
+               ms.min_scaled_element_step_s, ms.added_mass_kg,
+               ms.element_mass_kg > 0 ? 100 * ms.added_mass_kg / ms.element_mass_kg : 0.0, ms.element_mass_kg,
+               impactor > 0 ? ms.added_mass_kg / impactor : 0.0, impactor, st.steps_below_mass_scaling_target);
+  }
   fmt::print("{:>5} {:>8} {:>9} {:>11} {:>11} {:>5} {:>10} {:>9}\n", "ring", "c=d/D", "crush_mm", "wrapped_deg",
              "inv_arc_mm", "wrap", "mode", "max_PEEQ");
   for (std::size_t i = 0; i < run.crush_ratio.size(); ++i)

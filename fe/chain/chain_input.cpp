@@ -14,6 +14,7 @@ void validate(const ChainInput& in) {
   need(in.rings >= 1, fmt::format("rings must be >= 1 (got {})", in.rings));
   need(in.step_bound_margin >= 1 && in.step_bound_margin <= 2,
        fmt::format("step_bound_margin must lie in [1, 2] (got {})", in.step_bound_margin));
+  validate(in.mass_scaling);
   need(in.threads >= 0 && in.threads <= 2, fmt::format("threads must be 0 (automatic), 1 or 2 (got {})", in.threads));
   // Ring, material, mesh and contact: the same rules as the single-ring model.
   FeInput single;

@@ -4,6 +4,7 @@
 // the impactor comes down from +y onto ring 1, the target (if any) lies under the last ring.
 #pragma once
 
+#include "fe/dynamics/mass_scaling.hpp"
 #include "fe/fe_input.hpp"
 
 namespace ringcrush::fe {
@@ -47,6 +48,9 @@ struct ChainInput {
   int threads = 0;
   StepBound step_bound = StepBound::Element;
   double step_bound_margin = 1.05;  // Assembled: ω² = margin · θ, in [1, 2]
+  // Explicit only, off by default: fixed mass scaling (fe/dynamics/mass_scaling.hpp), a
+  // change of the physics; run_dynamic refuses it with HHT.
+  MassScaling mass_scaling;
 };
 
 // Throws std::invalid_argument naming the first inconsistent value.

@@ -85,6 +85,7 @@ struct ChainModel::Impl {
   // and the shape measure there; in between λ is scaled with the shape measure.
   std::vector<std::array<double, 8>> element_mass;
   std::vector<double> omega2_exact, shape_exact, thickness_exact;
+  MassScalingReport scaling;  // element_mass and omega2_exact are the scaled ones
   std::vector<Eigen::Vector2d> x_bound;  // current coordinates (stable_step)
   // The element part of the last stable_step() (ω² and what set it), reused by
   // contact_stable_step().
@@ -368,21 +369,33 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.omega2_exact.resize(ne);
   m.shape_exact.resize(ne);
   m.thickness_exact.assign(ne, 1.0);
+  // Mass scaling (explicit, opt-in, mass_scaling.hpp) needs the element's stiffness again.
+  const bool scaling = input.mass_scaling.active();
+  std::vector<ElementMatrix> k_scaling;
   for (int e = 0; e < ne; ++e) {
     ElementCoords xe;
     for (int a = 0; a < 8; ++a) xe.row(a) = mesh_.nodes[mesh_.elements[e][a]].transpose();
-    const auto me = hrz_lumped_mass(xe, input.density_kg_m3, input.ring.width_m);
-    m.element_mass[e] = me;
-    for (int a = 0; a < 8; ++a) {
-      m.mass(2 * mesh_.elements[e][a]) += me[a];
-      m.mass(2 * mesh_.elements[e][a] + 1) += me[a];
-    }
+    m.element_mass[e] = hrz_lumped_mass(xe, input.density_kg_m3, input.ring.width_m);
     m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
     const ElementMatrix k = element_elastic_stiffness(xe, input.integration, input.ring.width_m, m.material);
-    m.omega2_exact[e] = element_max_eigenvalue(k, me);
+    m.omega2_exact[e] = element_max_eigenvalue(k, m.element_mass[e]);
     if (input.step_bound == StepBound::Assembled) m.stiffness_exact.push_back(k);
+    if (scaling) k_scaling.push_back(k);
     m.shape_exact[e] = shape_measure(mesh_.elements[e], mesh_.nodes);
   }
+  // The element's own step as the driver takes it: safety and the bulk-viscosity reduction
+  // of contact_stable_step() included (mass_scaling.hpp). Off: nothing is touched.
+  const double xi = input.bulk_viscosity;
+  m.scaling = scale_element_masses(input.mass_scaling, input.mass_scaling.safety * (std::sqrt(1 + xi * xi) - xi),
+                                   m.element_mass, m.omega2_exact);
+  // λ_max of a scaled element from its eigenproblem, as every later re-bound computes it.
+  for (int e = 0; scaling && e < ne; ++e)
+    if (m.scaling.element_scale[e] != 1.0) m.omega2_exact[e] = element_max_eigenvalue(k_scaling[e], m.element_mass[e]);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 8; ++a) {
+      m.mass(2 * mesh_.elements[e][a]) += m.element_mass[e][a];
+      m.mass(2 * mesh_.elements[e][a] + 1) += m.element_mass[e][a];
+    }
   m.mass(2 * mesh_.impactor_node) = m.mass(2 * mesh_.impactor_node + 1) = share * input.impactor_mass_kg;
   for (int p : mesh_.plate_nodes) m.mass(2 * p) = m.mass(2 * p + 1) = share * input.plate_mass_kg;
   if (input.step_bound == StepBound::Assembled) {
@@ -470,6 +483,12 @@ ChainModel::~ChainModel() = default;
 int ChainModel::dofs() const { return 2 * static_cast<int>(mesh_.nodes.size()); }
 const std::vector<int>& ChainModel::fixed_dofs() const { return impl_->topo.fixed_dofs; }
 const Eigen::VectorXd& ChainModel::lumped_mass() const { return impl_->mass; }
+const MassScalingReport& ChainModel::mass_scaling() const { return impl_->scaling; }
+const std::array<double, 8>& ChainModel::element_mass(int e) const {
+  if (e < 0 || e >= static_cast<int>(impl_->element_mass.size()))
+    throw std::invalid_argument(fmt::format("ChainModel::element_mass: element {} of {}", e, impl_->element_mass.size()));
+  return impl_->element_mass[static_cast<std::size_t>(e)];
+}
 SparseSystem& ChainModel::tangent_system() { return *impl_->system; }
 const ChainContactForces& ChainModel::contact_forces() const { return impl_->forces; }
 

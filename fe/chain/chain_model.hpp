@@ -108,6 +108,11 @@ class ChainModel final : public DynamicSystem {
   // volumetric strain rates over this step; 0 switches it off.
   void set_increment_time(double dt) override;
 
+  // Mass scaling (ChainInput::mass_scaling, explicit only; mass_scaling.hpp): what was scaled
+  // and the added mass, in the model (a half model: half the chain's). Inactive: report.active false.
+  const MassScalingReport& mass_scaling() const;
+  // HRZ nodal masses of element e (0-based), scaled if mass scaling scaled it.
+  const std::array<double, 8>& element_mass(int e) const;
   // Contact forces of the last evaluate().
   const ChainContactForces& contact_forces() const;
   // Reach of the penalty contact: one element through the wall (a deeper penetration gets

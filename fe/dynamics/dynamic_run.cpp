@@ -38,10 +38,17 @@ void validate(const DynamicSolverInput& s) {
   // The drivers check their own options (safety, α, steps, tolerances) and name them.
 }
 
+// Mass scaling aims at the step the explicit driver takes: the element's own step includes
+// the driver's safety (mass_scaling.hpp), which lives in the solver input.
+ChainInput with_solver_safety(ChainInput chain, const DynamicSolverInput& solver) {
+  if (chain.mass_scaling.active()) chain.mass_scaling.safety = solver.safety;
+  return chain;
+}
+
 class DynamicRun {
  public:
   DynamicRun(const ChainInput& chain, const DynamicSolverInput& solver, const DynamicCallbacks& cb)
-      : solver_(solver), cb_(cb), model_(chain), sym_(model_.symmetry_factor()) {
+      : solver_(solver), cb_(cb), model_(with_solver_safety(chain, solver)), sym_(model_.symmetry_factor()) {
     const auto& mesh = model_.mesh();
     node_ring_.assign(mesh.nodes.size(), -1);
     for (std::size_t e = 0; e < mesh.elements.size(); ++e)
@@ -58,6 +65,7 @@ class DynamicRun {
       o.safety = solver_.safety;
       o.stable_step_every = solver_.stable_step_every;
       o.energy_error_limit = solver_.energy_error_limit;
+      o.mass_scaling_target_s = model_.input().mass_scaling.target_step_s;
       ExplicitDriver d(model_, o);
       loop(d, res);
       res.statistics.step_limited_by = d.limited_by();
@@ -65,6 +73,7 @@ class DynamicRun {
       res.statistics.contact_bounds = d.contact_bounds();
       res.statistics.bound_iterations = model_.step_bound_statistics().iterations;
       res.statistics.bound_fallbacks = model_.step_bound_statistics().fallbacks;
+      res.statistics.steps_below_mass_scaling_target = d.steps_below_target();
     } else {
       HhtOptions o;
       o.alpha = solver_.alpha;
@@ -83,6 +92,9 @@ class DynamicRun {
       res.statistics.factorizations = d.factorizations();
       res.statistics.step_limited_by = "half-step residual control (HAFTOL)";
     }
+    res.mass_scaling = model_.mass_scaling();
+    res.mass_scaling.element_mass_kg *= sym_;
+    res.mass_scaling.added_mass_kg *= sym_;
     res.mesh = model_.mesh();
     res.max_peeq_per_ring = model_.max_peeq_per_ring();
     res.statistics.wall_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -262,6 +274,12 @@ class DynamicRun {
 DynamicResult run_dynamic(const ChainInput& chain, const DynamicSolverInput& solver, const DynamicCallbacks& callbacks) {
   validate(chain);
   validate(solver);
+  if (solver.scheme != DynamicScheme::Explicit && chain.mass_scaling.active())
+    throw std::invalid_argument(fmt::format(
+        "dynamic solver: mass scaling (mass_scaling_dt = {} s, mass_scaling_factor = {}) is for the explicit solver "
+        "only: the HHT step is set by its half-step residual control, not the stable step, so added mass would "
+        "only change the physics",
+        chain.mass_scaling.target_step_s, chain.mass_scaling.factor));
   DynamicRun run(chain, solver, callbacks);
   return run.run();
 }

@@ -70,6 +70,8 @@ struct DynamicStatistics {
   // Explicit: full stable-step bounds, contact-only re-bounds, and with the assembled bound
   // its power iterations and the bounds that fell back to the element bound.
   long full_bounds = 0, contact_bounds = 0, bound_iterations = 0, bound_fallbacks = 0;
+  // Explicit with a mass-scaling target: steps whose stable step stayed below it.
+  long steps_below_mass_scaling_target = 0;
 };
 
 struct DynamicResult {
@@ -83,6 +85,9 @@ struct DynamicResult {
   double numerical_dissipation = 0;      // final numerical_j / KE0 (HHT > 0; explicit ≈ 0)
   std::string end_reason;                // "arrest", "end_time", ...
   DynamicStatistics statistics;
+  // Explicit mass scaling (ChainInput::mass_scaling): the model's report with the masses
+  // (element_mass_kg, added_mass_kg) converted to the whole chain (× symmetry factor).
+  MassScalingReport mass_scaling;
 };
 
 struct DynamicProgress {
@@ -95,6 +100,8 @@ struct DynamicCallbacks {
   std::function<void(const std::string&)> log;
 };
 
+// Mass scaling (chain.mass_scaling) with HHT: std::invalid_argument (its step is not set by
+// the stable step; scaling would only change the physics). Its safety is solver.safety.
 // Throws SolveFailure (static_driver.hpp) with a diagnosis (time, step, residual, where)
 // when the HHT step falls below its minimum, and when the energy limit or a non-finite value
 // stops the run.

@@ -19,6 +19,9 @@ ExplicitDriver::ExplicitDriver(DynamicSystem& system, const ExplicitOptions& opt
     throw std::invalid_argument(fmt::format("explicit: max_step_s = {} must be > 0", opt_.max_step_s));
   if (!(opt_.fixed_step_s >= 0) || !std::isfinite(opt_.fixed_step_s))
     throw std::invalid_argument(fmt::format("explicit: fixed_step_s = {} must be ≥ 0", opt_.fixed_step_s));
+  if (!(opt_.mass_scaling_target_s >= 0) || !std::isfinite(opt_.mass_scaling_target_s))
+    throw std::invalid_argument(
+        fmt::format("explicit: mass_scaling_target_s = {} must be ≥ 0", opt_.mass_scaling_target_s));
   const int n = sys_.dofs();
   const Eigen::VectorXd& m = sys_.lumped_mass();
   if (m.size() != n) throw std::invalid_argument("explicit: lumped mass size differs from the dof count");
@@ -68,12 +71,20 @@ void ExplicitDriver::bound_step(bool contact_only) {
     rebound_ = false;
     since_bound_ = 0;
   }
-  // Log when the kind of limit changes (element / contact / cap) or the step moved by more
-  // than 10 % since the last line: contact nodes come and go every few steps.
+  // With mass scaling the elements were scaled to reach the target at the start; what still
+  // holds the step below it (a contact spring, a crushed or thickened element) is named.
+  // 1e-9: the scaled element's own bound meets the target to rounding.
+  const bool was_below = below_target_;
+  below_target_ = opt_.mass_scaling_target_s > 0 && dt_target_ < opt_.mass_scaling_target_s * (1 - 1e-9);
+  // Log when the kind of limit changes (element / contact / cap), the step moved by more
+  // than 10 % since the last line (contact nodes come and go every few steps), or the step
+  // crossed the mass-scaling target.
   const std::string kind = limited_by_.substr(0, limited_by_.find(' '));
-  if (log && (kind != logged_kind_ || std::abs(dt_target_ - logged_dt_) > 0.1 * logged_dt_)) {
-    log(fmt::format("explicit: t = {:.6g} s, Δt = {:.4g} s ({} × 2/ω_max = {:.4g} s, limited by {})", t_, dt_target_,
-                    opt_.safety, dt_stable_, limited_by_));
+  if (log && (kind != logged_kind_ || std::abs(dt_target_ - logged_dt_) > 0.1 * logged_dt_ || was_below != below_target_)) {
+    log(fmt::format("explicit: t = {:.6g} s, Δt = {:.4g} s ({} × 2/ω_max = {:.4g} s, limited by {}){}", t_, dt_target_,
+                    opt_.safety, dt_stable_, limited_by_,
+                    below_target_ ? fmt::format("; below the mass-scaling target {:.4g} s", opt_.mass_scaling_target_s)
+                                  : std::string()));
     logged_kind_ = kind;
     logged_dt_ = dt_target_;
   }
@@ -114,6 +125,7 @@ void ExplicitDriver::step(double t_limit) {
   sys_.commit(u_);
   t_ += dt_;
   ++steps_;
+  if (below_target_ && opt_.fixed_step_s == 0) ++steps_below_target_;
   ++since_bound_;
   min_dt_ = steps_ == 1 ? dt_ : std::min(min_dt_, dt_);
   max_dt_ = std::max(max_dt_, dt_);

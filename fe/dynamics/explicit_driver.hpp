@@ -42,6 +42,9 @@ struct ExplicitOptions {
   double blowup_energy_factor = 10.0;
   // |balance error| / reference energy above this stops the run (0: no limit).
   double energy_error_limit = 0;
+  // The mass-scaling target Δt* (mass_scaling.hpp; 0: none), for the log and the count of
+  // steps whose stable step stayed below it (contact or crushed elements limiting).
+  double mass_scaling_target_s = 0;
 };
 
 class ExplicitDriver {
@@ -68,6 +71,8 @@ class ExplicitDriver {
   long evaluations() const { return evaluations_; }
   long full_bounds() const { return full_bounds_; }        // stable_step() calls
   long contact_bounds() const { return contact_bounds_; }  // contact_stable_step() calls
+  // Steps whose safety × stable step was below the mass-scaling target (0 without one).
+  long steps_below_target() const { return steps_below_target_; }
 
   const Eigen::VectorXd& displacement() const { return u_; }
   const Eigen::VectorXd& velocity() const { return v_; }
@@ -94,7 +99,8 @@ class ExplicitDriver {
   double logged_dt_ = 0;
   bool rebound_ = true, contact_rebound_ = false;
   long full_bounds_ = 0, contact_bounds_ = 0;
-  long steps_ = 0, since_bound_ = 0, evaluations_ = 0;
+  long steps_ = 0, since_bound_ = 0, evaluations_ = 0, steps_below_target_ = 0;
+  bool below_target_ = false;
   double min_dt_ = 0, max_dt_ = 0, contact_time_ = 0;
 };
 

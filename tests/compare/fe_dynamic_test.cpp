@@ -15,6 +15,7 @@
 #include <regex>
 #include <sstream>
 
+#include "compare/fe_static.hpp"
 #include "compare/run_output.hpp"
 #include "fe/mesh/ring_mesh.hpp"
 
@@ -396,4 +397,59 @@ TEST(FeDynamicOutputs, NanInAFrameLeavesNoResultsDirectory) {
     EXPECT_THROW(write_fe_dynamic_outputs(s, r, run, out), std::runtime_error);
   }
   EXPECT_FALSE(fs::exists(dir));
+}
+
+// Mass scaling (fe/dynamics/mass_scaling.hpp): the [fe] keys reach the chain input with the
+// scene's safety; off by default; bad values are scene errors naming the key; with HHT or a
+// static scene it is refused by name, not ignored; the summary carries the added mass.
+TEST(FeDynamicInput, MassScalingKeys) {
+  const fe::ChainInput off = fe_chain_input(scene_variant("thesis_dynamic", {{"solver = \"hht\"", "solver = \"explicit\""}}));
+  EXPECT_FALSE(off.mass_scaling.active());
+  const Scene s = scene_variant("thesis_dynamic", {{"solver = \"hht\"", "solver = \"explicit\""},
+                                                   {"\\[fe\\]", "[fe]\nmass_scaling_dt = 1.5e-7\nmass_scaling_factor = 2.0\nexplicit_safety = 0.7"}});
+  const fe::ChainInput c = fe_chain_input(s);
+  EXPECT_DOUBLE_EQ(c.mass_scaling.target_step_s, 1.5e-7);
+  EXPECT_DOUBLE_EQ(c.mass_scaling.factor, 2.0);
+  EXPECT_DOUBLE_EQ(c.mass_scaling.safety, 0.7);
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+           {"mass_scaling_dt", "-1e-7"}, {"mass_scaling_dt", "nan"}, {"mass_scaling_factor", "0.5"},
+           {"mass_scaling_factor", "inf"}}) {
+    try {
+      scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\n" + key + " = " + value}});
+      ADD_FAILURE() << key << " = " << value << " accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+  // The thesis scene's own solver is HHT: refused by name.
+  const Scene hht = scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\nmass_scaling_dt = 1e-7"}});
+  try {
+    fe_chain_input(hht);
+    ADD_FAILURE() << "mass scaling with HHT accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("explicit solver only"), std::string::npos) << e.what();
+  }
+  const Scene stat = scene_variant("thesis_static", {{"\\[fe\\]", "[fe]\nmass_scaling_factor = 2.0"}});
+  try {
+    fe_static_input(stat);
+    ADD_FAILURE() << "mass scaling with a static scene accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mass_scaling_factor"), std::string::npos) << e.what();
+  }
+  // The summary reports the added mass next to the rings' and the impactor's.
+  const Scene four = four_rings();
+  auto r = synthetic_result(four, {0.2, 0.2, 0.2, 0.2}, false);
+  r.mass_scaling.active = true;
+  r.mass_scaling.target_step_s = 1e-7;
+  r.mass_scaling.element_mass_kg = 0.1;
+  r.mass_scaling.added_mass_kg = 0.05;
+  r.mass_scaling.scaled_elements = 7;
+  const RunResult run = fe_dynamic_run_result(four, r);
+  const auto j = fe_dynamic_summary(four, run);
+  ASSERT_TRUE(j.contains("mass_scaling"));
+  EXPECT_DOUBLE_EQ(j["mass_scaling"]["added_mass_percent_of_rings"].get<double>(), 50.0);
+  EXPECT_DOUBLE_EQ(j["mass_scaling"]["added_mass_over_impactor_mass"].get<double>(), 0.05 / four.impactor->mass_kg);
+  EXPECT_EQ(j["mass_scaling"]["elements_scaled"].get<int>(), 7);
+  EXPECT_FALSE(fe_dynamic_summary(four, fe_dynamic_run_result(four, synthetic_result(four, {0.2, 0.2, 0.2, 0.2}, false)))
+                   .contains("mass_scaling"));
 }
