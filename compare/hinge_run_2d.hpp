@@ -46,6 +46,7 @@ struct Level2Settings {
   // "Level 2 per-step cost".
   int jacobian_reuse_steps = 0;
   int klu_ordering = 1;
+  double pattern_slack = 0.0;  // PolygonIdaOptions::pattern_slack
   // integrator = "central_difference": the step is this × the stable-step bound
   // (hinge/polygon_central_difference.hpp), in (0, 1]; the tolerances do not apply.
   double central_difference_safety = 0.8;

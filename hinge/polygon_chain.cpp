@@ -316,24 +316,6 @@ void PolygonChain::generalised_forces(double t, const double* y, double* phi) {
   evaluate(t, y, phi, false);
 }
 
-void PolygonChain::jac(std::size_t row, std::size_t col, double value) {
-  if (axis_force_row_[row]) return;  // the symmetry plane: no x force on axis nodes
-  emit(row, col, value);
-}
-
-void PolygonChain::emit(std::size_t row, std::size_t col, double value) {
-  if (scatter_) {
-    auto& s = *scatter_;
-    if (s.cursor < s.count && s.keys[s.cursor] == jacobian_key(row, col))
-      s.data[s.slots[s.cursor]] += value;
-    else
-      s.matched = false;
-    ++s.cursor;
-    return;
-  }
-  jac_->push_back({static_cast<int>(row), static_cast<int>(col), value});
-}
-
 // Full-ring node m → (independent node, sign of its x): the half model mirrors m ≥ N/2 + 1.
 std::pair<int, double> PolygonChain::independent(int m) const {
   if (half_ && m >= n_ind_) return {n_full_ - m, -1.0};

@@ -282,8 +282,23 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // dropped). ring_block adds a 2×2 block ∂F_i/∂(p or v)_m (slot 0 or 2) of full-ring
   // nodes, ring_force_entry a column of ∂F_i, ring_state_entry a row's entries on the x, y
   // of node m's positions (slot 0) or velocities (slot 2).
-  void jac(std::size_t row, std::size_t col, double value);
-  void emit(std::size_t row, std::size_t col, double value);  // jac without the axis-row filter
+  // Inline: ~35 000 entries per Test 30 matrix pass through here.
+  void jac(std::size_t row, std::size_t col, double value) {
+    if (axis_force_row_[row]) return;  // the symmetry plane: no x force on axis nodes
+    emit(row, col, value);
+  }
+  void emit(std::size_t row, std::size_t col, double value) {  // jac without the axis-row filter
+    if (scatter_) {
+      auto& s = *scatter_;
+      if (s.cursor < s.count && s.keys[s.cursor] == jacobian_key(row, col))
+        s.data[s.slots[s.cursor]] += value;
+      else
+        s.matched = false;
+      ++s.cursor;
+      return;
+    }
+    jac_->push_back({static_cast<int>(row), static_cast<int>(col), value});
+  }
   void emit_kinematic_and_diagonal(double cj);
   std::pair<int, double> independent(int full_node) const;
   void ring_block(int ring, int i, int m, int slot, double dxx, double dxy, double dyx, double dyy);

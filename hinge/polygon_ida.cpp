@@ -57,6 +57,11 @@ struct PolygonIdaSolver::Impl {
   std::vector<double> stiffness;  // −∂φ/∂y on the cached pattern, from the last formation
   int reuse_steps = 0;            // PolygonIdaOptions::jacobian_reuse_steps
   long formations = 0, formed_at_step = 0;
+  long rebuilds = 0, remaps = 0;  // new patterns; sequence changes kept on the old pattern
+  double pattern_slack = 0.0;     // PolygonIdaOptions::pattern_slack
+  bool keep_old_entries = false;  // map_onto_pattern → build_pattern
+  std::vector<char> used;
+  std::vector<std::size_t> new_slot;
   std::array<long, 2> formed_failures{0, 0};  // IDA's convergence / error-test failures then
   long symbolic = 0;
   std::vector<PolygonChain::Triplet> triplets;
@@ -193,7 +198,7 @@ struct PolygonIdaSolver::Impl {
     triplets_at(t, state, state_rate, r, 0.0);
     bool cached = slot.size() == triplets.size();
     for (std::size_t k = 0; cached && k < triplets.size(); ++k) cached = keys[k] == key(triplets[k]);
-    if (!cached) build_pattern();
+    if (!cached && !map_onto_pattern()) build_pattern();
     stiffness.assign(csc_indices.size(), 0.0);
     for (std::size_t k = 0; k < triplets.size(); ++k) stiffness[slot[k]] += triplets[k].value;
   }
@@ -202,12 +207,60 @@ struct PolygonIdaSolver::Impl {
     return PolygonChain::jacobian_key(static_cast<std::size_t>(e.row), static_cast<std::size_t>(e.col));
   }
 
+  // A new entry sequence (a contact pair came or went) whose entries all lie in the current
+  // pattern keeps it: only the slots are looked up, and KLU keeps its symbolic analysis
+  // (the absent entries are explicit zeros). Contacts flicker in and out of the "near"
+  // band, so many sequence changes are such returns. Fails when an entry is new (then
+  // build_pattern keeps the old entries too if they stay within the slack) or when unused
+  // entries would make up more than pattern_slack of the pattern.
+  bool map_onto_pattern() {
+    keep_old_entries = false;
+    if (pattern_slack <= 0.0 || csc_indices.empty()) return false;
+    const std::size_t nnz = csc_indices.size();
+    used.assign(nnz, 0);
+    std::size_t distinct = 0, missing = 0;
+    new_slot.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      const auto& e = triplets[k];
+      const auto first = csc_indices.begin() + csc_pointers[static_cast<std::size_t>(e.col)];
+      const auto last = csc_indices.begin() + csc_pointers[static_cast<std::size_t>(e.col) + 1];
+      const auto at = std::lower_bound(first, last, static_cast<sunindextype>(e.row));
+      if (at == last || *at != e.row) {
+        ++missing;
+        continue;
+      }
+      new_slot[k] = static_cast<std::size_t>(at - csc_indices.begin());
+      if (!used[new_slot[k]]) {
+        used[new_slot[k]] = 1;
+        ++distinct;
+      }
+    }
+    const auto unused = static_cast<double>(nnz - distinct);
+    if (missing > 0) {
+      keep_old_entries = unused <= pattern_slack * static_cast<double>(nnz + missing);
+      return false;
+    }
+    if (unused > pattern_slack * static_cast<double>(nnz)) return false;
+    slot.swap(new_slot);
+    keys.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) keys[k] = key(triplets[k]);
+    ++remaps;
+    return true;
+  }
+
   // The CSC pattern of the current triplets (Eigen sums duplicates, sorts rows), each
-  // triplet's slot in it and the diagonal's slots (every diagonal entry is emitted).
+  // triplet's slot in it and the diagonal's slots (every diagonal entry is emitted); with
+  // keep_old_entries the previous pattern's entries stay in it as zeros.
   void build_pattern() {
+    ++rebuilds;
     eigen_triplets.clear();
-    eigen_triplets.reserve(triplets.size());
+    eigen_triplets.reserve(triplets.size() + (keep_old_entries ? csc_indices.size() : 0));
     for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, 0.0);
+    if (keep_old_entries)
+      for (std::size_t c = 0; c + 1 < csc_pointers.size(); ++c)
+        for (auto i = csc_pointers[c]; i < csc_pointers[c + 1]; ++i)
+          eigen_triplets.emplace_back(static_cast<int>(csc_indices[static_cast<std::size_t>(i)]), static_cast<int>(c),
+                                      0.0);
     const auto n = static_cast<Eigen::Index>(system->size());
     matrix.resize(n, n);
     matrix.setFromTriplets(eigen_triplets.begin(), eigen_triplets.end());
@@ -273,6 +326,9 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
     throw std::invalid_argument(fmt::format("PolygonIdaSolver: jacobian_reuse_steps {} must be ≥ 0",
                                             options.jacobian_reuse_steps));
   m.reuse_steps = options.jacobian_reuse_steps;
+  if (!(options.pattern_slack >= 0.0 && options.pattern_slack < 1.0))
+    throw std::invalid_argument(fmt::format("PolygonIdaSolver: pattern_slack {} must be in [0, 1)", options.pattern_slack));
+  m.pattern_slack = options.pattern_slack;
   if (options.klu_ordering < 0 || options.klu_ordering > 2)
     throw std::invalid_argument(
         fmt::format("PolygonIdaSolver: klu_ordering {} must be 0 (AMD), 1 (COLAMD) or 2 (natural)", options.klu_ordering));
@@ -400,6 +456,8 @@ PolygonIdaStatistics PolygonIdaSolver::statistics() const {
   s.preconditioner_setups = m.setups;
   s.symbolic_factorisations = m.symbolic;
   s.jacobian_formations = m.formations;
+  s.pattern_rebuilds = m.rebuilds;
+  s.pattern_remaps = m.remaps;
   return s;
 }
 

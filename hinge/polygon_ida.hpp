@@ -78,6 +78,11 @@ struct PolygonIdaOptions {
   // default), 2 natural. The matrix is structurally near-symmetric (ring bands, contact
   // couplings both ways), the case AMD is made for.
   int klu_ordering = 1;
+  // Direct solver: when the contact pattern changes, entries that vanished stay in the
+  // compressed-column pattern as zeros while they make up at most this fraction of it, so
+  // that a contact that returns needs no new symbolic factorisation; 0 keeps the exact
+  // pattern.
+  double pattern_slack = 0.0;
   // When set, every accepted step is appended here (IDA is then driven one step at a time;
   // the steps are the same as without the log).
   std::vector<PolygonIdaStep>* step_log = nullptr;
@@ -87,7 +92,9 @@ struct PolygonIdaStatistics {
   long steps = 0, residual_evaluations = 0, nonlinear_iterations = 0, error_test_failures = 0,
        nonlinear_convergence_failures = 0, preconditioner_setups = 0, linear_iterations = 0,
        symbolic_factorisations = 0,  // direct solver: setups whose contact pattern changed
-       jacobian_formations = 0;      // direct solver: setups that formed ∂φ/∂y anew
+       jacobian_formations = 0,      // direct solver: setups that formed ∂φ/∂y anew
+       pattern_rebuilds = 0,  // direct solver: entry sequences that needed a new CSC pattern
+       pattern_remaps = 0;    // … and those mapped onto the old one (pattern_slack)
 };
 
 class PolygonIdaSolver {

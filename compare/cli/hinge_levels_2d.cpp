@@ -49,6 +49,7 @@ struct BenchOptions {
   std::optional<double> rtol;
   std::optional<double> safety;
   std::optional<int> jacobian_reuse, klu_ordering;
+  std::optional<double> pattern_slack;
 };
 
 void bench(const BenchOptions& o) {
@@ -58,6 +59,7 @@ void bench(const BenchOptions& o) {
   if (o.safety) settings.central_difference_safety = *o.safety;
   if (o.jacobian_reuse) settings.jacobian_reuse_steps = *o.jacobian_reuse;
   if (o.klu_ordering) settings.klu_ordering = *o.klu_ordering;
+  if (o.pattern_slack) settings.pattern_slack = *o.pattern_slack;
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -74,7 +76,9 @@ void bench(const BenchOptions& o) {
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
              last.raw.symbolic_factorisations, last.raw.linear_iterations, last.raw.energy_balance_error);
   if (opt.integrator == HingeIntegrator::Ida)
-    fmt::print("IDA: {} matrix formations, {} rejected steps, {} Newton iterations\n", last.raw.jacobian_formations,
+    fmt::print("IDA: {} matrix formations, {} new patterns, {} kept patterns, {} rejected steps, {} Newton "
+               "iterations\n",
+               last.raw.jacobian_formations, last.raw.pattern_rebuilds, last.raw.pattern_remaps,
                last.raw.rejected_steps, last.raw.nonlinear_iterations);
   if (opt.integrator == HingeIntegrator::CentralDifference)
     fmt::print("central difference: safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
@@ -99,6 +103,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--safety", o->safety, "central_difference: factor on the stable-step bound, in (0, 1]");
   cmd->add_option("--jacobian-reuse", o->jacobian_reuse, "ida: steps a formed dphi/dy may serve (0: every setup)");
   cmd->add_option("--klu-ordering", o->klu_ordering, "ida: KLU ordering, 0 AMD, 1 COLAMD, 2 natural");
+  cmd->add_option("--pattern-slack", o->pattern_slack, "ida: fraction of stale zero entries kept in the pattern, [0, 1)");
   cmd->callback([o] { bench(*o); });
 }
 
