@@ -52,8 +52,8 @@ Slots slots_of(const std::vector<PolygonChain::Triplet>& triplets) {
   return s;
 }
 
-// Two states of a short welded two-ring impact (rings in contact with the plates, hinges
-// flowing) with the same contact pattern: the second a little later.
+// The state of a short two-ring impact at `end` (rings in contact with the impactor, the
+// target and each other, hinges flowing).
 std::vector<double> state_at(const PolygonChainInput& in, double end) {
   PolygonRunOptions o;
   o.relative_tolerance = 1e-5;
@@ -74,8 +74,9 @@ TEST(PolygonJacobianScatter, EqualsTripletAssemblyEntryByEntry) {
   const Slots s = slots_of(triplets);
   ASSERT_GT(s.entries.size(), 1000u);
 
-  // A nearby state (the first one's pattern found by scanning later states) scattered into
-  // the slots against its own triplet assembly, with a cj that weighs the diagonal in.
+  // Nearby states (every component moved by up to 2e-9 of its unit, so that the contact
+  // pattern is kept) scattered into the first state's slots against their own triplet
+  // assembly, with a cj that weighs the diagonal in.
   const double cj = 3e5;
   int compared = 0;
   for (double dt : {1e-7, 5e-7, 2e-6}) {
