@@ -1,7 +1,8 @@
 // IDA for the Level 2 polygon chain (THEORY §4.4): BDF on F(t, y, y′) = 0. The iteration
 // matrix ∂F/∂y + cj ∂F/∂y′ is banded per ring plus contact couplings whose pattern changes as
-// contacts open and close; it is rebuilt (coloured finite differences,
-// PolygonChain::sparse_jacobian) at every linear-solver setup. The dense and band solvers of
+// contacts open and close; it is formed at linear-solver setups (analytic by default,
+// PolygonChain::analytic_jacobian_scatter, or coloured differences) with ∂F/∂y kept apart
+// from cj ∂F/∂y′ = cj diag μ (README, Level 2 per-step cost). The dense and band solvers of
 // IdaSolver would cost O(n³) or O(n·bw²) with bw ≈ half a ring. Two linear solvers:
 //   * Direct (default): a sparse direct solve (SUNDIALS' KLU on a compressed-column matrix;
 //     the symbolic analysis is redone only when the contact pattern changes). One
