@@ -135,6 +135,9 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   po.absolute_scale = 1e-3 * run.relative_tolerance_used;  // × R, V, 1 rad, KE0
   po.velocity_tolerance_factor = s.velocity_tolerance_factor;
   po.plastic_tolerance_factor = s.plastic_tolerance_factor;
+  po.ida_jacobian_reuse_steps = s.jacobian_reuse_steps;
+  po.ida_klu_ordering = s.klu_ordering;
+  po.ida_pattern_slack = s.pattern_slack;
   po.output_interval_s = s.output_interval_s;
   po.settle_time_s = s.settle_time_s;
   if (is_static) {

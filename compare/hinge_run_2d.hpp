@@ -41,6 +41,12 @@ struct Level2Settings {
   // 0.4–1.8e-3, past the tests' 1e-3 (README, Level 2 speed).
   double velocity_tolerance_factor = 30.0;
   double plastic_tolerance_factor = 3.0;
+  // IDA's direct solver: keep ∂φ/∂y over up to this many steps while cj changes
+  // (PolygonIdaOptions::jacobian_reuse_steps) and KLU's ordering (0 AMD, 1 COLAMD); README
+  // "Level 2 per-step cost".
+  int jacobian_reuse_steps = 0;
+  int klu_ordering = 1;
+  double pattern_slack = 0.0;  // PolygonIdaOptions::pattern_slack
   // integrator = "central_difference": the step is this × the stable-step bound
   // (hinge/polygon_central_difference.hpp), in (0, 1]; the tolerances do not apply.
   double central_difference_safety = 0.8;

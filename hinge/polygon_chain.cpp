@@ -316,11 +316,6 @@ void PolygonChain::generalised_forces(double t, const double* y, double* phi) {
   evaluate(t, y, phi, false);
 }
 
-void PolygonChain::jac(std::size_t row, std::size_t col, double value) {
-  if (axis_force_row_[row]) return;  // the symmetry plane: no x force on axis nodes
-  jac_->push_back({static_cast<int>(row), static_cast<int>(col), value});
-}
-
 // Full-ring node m → (independent node, sign of its x): the half model mirrors m ≥ N/2 + 1.
 std::pair<int, double> PolygonChain::independent(int m) const {
   if (half_ && m >= n_ind_) return {n_full_ - m, -1.0};
@@ -364,22 +359,44 @@ void PolygonChain::analytic_jacobian(double t, double cj, const double* y, std::
     jac_ = nullptr;
     throw;
   }
+  emit_kinematic_and_diagonal(cj);
   jac_ = nullptr;
-  // Kinematic rows x′ = v (none for the x of axis nodes, held at 0) and bodies' y′ = v.
+}
+
+bool PolygonChain::analytic_jacobian_scatter(double t, double cj, const double* y, JacobianScatter& into) {
+  into.cursor = 0;
+  into.matched = true;
+  scatter_unused_.clear();
+  jac_ = &scatter_unused_;  // the force laws test jac_ to form their derivatives
+  scatter_ = &into;
+  try {
+    evaluate(t, y, phi_.data(), true);
+  } catch (...) {
+    jac_ = nullptr;
+    scatter_ = nullptr;
+    throw;
+  }
+  emit_kinematic_and_diagonal(cj);
+  jac_ = nullptr;
+  scatter_ = nullptr;
+  return into.matched && into.cursor == into.count;
+}
+
+// Kinematic rows x′ = v (none for the x of axis nodes, held at 0) and bodies' y′ = v, then
+// the diagonal cj μ (last, so that a caller can find its slots).
+void PolygonChain::emit_kinematic_and_diagonal(double cj) {
   for (int r = 0; r < n_rings_; ++r)
     for (int j = 0; j < n_ind_; ++j) {
       const auto o = node_offset(r, j);
-      if (!(half_ && (j == 0 || j == n_ind_ - 1)))
-        out.push_back({static_cast<int>(o), static_cast<int>(o + 2), -1.0});
-      out.push_back({static_cast<int>(o + 1), static_cast<int>(o + 3), -1.0});
+      if (!(half_ && (j == 0 || j == n_ind_ - 1))) emit(o, o + 2, -1.0);
+      emit(o + 1, o + 3, -1.0);
     }
   for (int b = 0; b < n_bodies_; ++b)
     if (!(b == 0 && in_.driven_impactor)) {
       const auto o = body_offset(b);
-      out.push_back({static_cast<int>(o), static_cast<int>(o + 1), -1.0});
+      emit(o, o + 1, -1.0);
     }
-  for (std::size_t i = 0; i < size_; ++i)
-    out.push_back({static_cast<int>(i), static_cast<int>(i), cj * mu_[i]});
+  for (std::size_t i = 0; i < size_; ++i) emit(i, i, cj * mu_[i]);
 }
 
 void PolygonChain::sparse_jacobian(double t, double cj, const double* y, const double* yp,

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -151,6 +152,26 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // iterate behind, and over ~10⁴ steps the balance drifts by ~3e-3 of the impact energy.
   // tests/hinge/polygon_jacobian_test.cpp holds it against differences of φ.
   void analytic_jacobian(double t, double cj, const double* y, std::vector<Triplet>& out);
+  // The same entries, in the same order, added straight into a compressed-column array
+  // (polygon_ida.cpp, README "Level 2 per-step cost"): entry k must have the (row, col)
+  // keys[k] = row << 32 | col of the last triplet assembly and goes to data[slots[k]]. While
+  // the contact pattern is unchanged the sequence is the same, so no triplets are stored
+  // and nothing is sorted. Returns false when the sequence differs (a contact opened or
+  // closed): `data` is then partly written and the caller reassembles from triplets.
+  struct JacobianScatter {
+    const std::int64_t* keys = nullptr;
+    const std::size_t* slots = nullptr;
+    std::size_t count = 0;
+    double* data = nullptr;
+    std::size_t cursor = 0;
+    bool matched = true;
+  };
+  static std::int64_t jacobian_key(std::size_t row, std::size_t col) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(row) << 32) | static_cast<std::uint32_t>(col));
+  }
+  bool analytic_jacobian_scatter(double t, double cj, const double* y, JacobianScatter& into);
+  // The diagonal μ of F = μ y′ − φ, i.e. ∂F/∂y′ (the iteration matrix is −∂φ/∂y + cj diag μ).
+  const std::vector<double>& rate_coefficients() const { return mu_; }
 
   // Generalised internal + contact + tie forces φ (the velocity-row part of rhs times mass),
   // for tests of the elastic stiffness. Same length as the state.
@@ -261,7 +282,24 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // dropped). ring_block adds a 2×2 block ∂F_i/∂(p or v)_m (slot 0 or 2) of full-ring
   // nodes, ring_force_entry a column of ∂F_i, ring_state_entry a row's entries on the x, y
   // of node m's positions (slot 0) or velocities (slot 2).
-  void jac(std::size_t row, std::size_t col, double value);
+  // Inline: ~35 000 entries per Test 30 matrix pass through here.
+  void jac(std::size_t row, std::size_t col, double value) {
+    if (axis_force_row_[row]) return;  // the symmetry plane: no x force on axis nodes
+    emit(row, col, value);
+  }
+  void emit(std::size_t row, std::size_t col, double value) {  // jac without the axis-row filter
+    if (scatter_) {
+      auto& s = *scatter_;
+      if (s.cursor < s.count && s.keys[s.cursor] == jacobian_key(row, col))
+        s.data[s.slots[s.cursor]] += value;
+      else
+        s.matched = false;
+      ++s.cursor;
+      return;
+    }
+    jac_->push_back({static_cast<int>(row), static_cast<int>(col), value});
+  }
+  void emit_kinematic_and_diagonal(double cj);
   std::pair<int, double> independent(int full_node) const;
   void ring_block(int ring, int i, int m, int slot, double dxx, double dxy, double dyx, double dyy);
   void ring_force_entry(int ring, int i, std::size_t col, double dfx, double dfy);
@@ -295,6 +333,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   bool candidates_built_ = false;
   double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
+  JacobianScatter* scatter_ = nullptr;   // set while analytic_jacobian_scatter runs (jac_ too)
+  std::vector<Triplet> scatter_unused_;  // jac_'s target then: stays empty
   std::vector<std::array<double, 3>> hinge_gx_, hinge_gy_;  // ∂θ_k/∂p on (k−1, k, k+1)
   std::vector<char> axis_force_row_;
   // Contact rows of the last evaluation for stable_step: per node (then per body) the sums

@@ -13,10 +13,12 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
+#include <stdexcept>
 
 namespace ringcrush::hinge {
 
@@ -51,6 +53,20 @@ struct PolygonIdaSolver::Impl {
   std::vector<sunindextype> csc_pointers, csc_indices;    // pattern of the cached slot map
   std::vector<std::int64_t> keys;                         // (row, col) of each triplet
   std::vector<std::size_t> slot;                          // triplet → CSC position
+  std::vector<std::size_t> diagonal_slot;                 // (i, i) → CSC position
+  std::vector<double> stiffness;  // −∂φ/∂y on the cached pattern, from the last formation
+  int reuse_steps = 0;            // PolygonIdaOptions::jacobian_reuse_steps
+  long formations = 0, formed_at_step = 0;
+  long rebuilds = 0, remaps = 0;  // new patterns; sequence changes kept on the old pattern
+  double pattern_slack = 0.0;     // PolygonIdaOptions::pattern_slack
+  bool keep_old_entries = false;  // map_onto_pattern → build_pattern
+  std::vector<char> used;
+  std::vector<std::size_t> new_slot;
+  // build_pattern scratch
+  std::vector<int> entry_row, entry_col, row_mark;
+  std::vector<std::size_t> column_start, column_entries, fill_at, row_slot;
+  std::vector<sunindextype> column_rows;
+  std::array<long, 2> formed_failures{0, 0};  // IDA's convergence / error-test failures then
   long symbolic = 0;
   std::vector<PolygonChain::Triplet> triplets;
   std::vector<Eigen::Triplet<double>> eigen_triplets;
@@ -107,19 +123,21 @@ struct PolygonIdaSolver::Impl {
                               N_VGetArrayPointer(r), triplets);
   }
 
-  // Direct solver: the matrix into IDA's CSC SUNMatrix. The analytic triplets come in the
-  // same sequence while the contact pairs stay the same, so the (row, col) → CSC slot map of
-  // the last full assembly is reused and the values are scattered in O(entries). KLU reuses
-  // its symbolic analysis (ordering, pattern) between setups, so a changed pattern resets it.
+  // Direct solver: the matrix into IDA's CSC SUNMatrix. F = μ y′ − φ(t, y), so the iteration
+  // matrix is −∂φ/∂y + cj diag μ: `stiffness` keeps −∂φ/∂y on the cached pattern and each
+  // setup adds cj μ on the diagonal slots (a copy and n additions). −∂φ/∂y is formed anew
+  // (a "formation") unless options.jacobian_reuse_steps allows the last one to serve: IDA
+  // calls a setup whenever cj has moved by more than cj_setup_ratio, although the state has
+  // hardly moved. The analytic entries come in the same sequence while the contact pattern
+  // stays the same, so they are added straight into their slots
+  // (PolygonChain::analytic_jacobian_scatter); a changed sequence falls back to triplets and
+  // a new pattern. KLU reuses its symbolic analysis (ordering, pattern) between setups, so a
+  // changed pattern resets it.
   static int jacobian_fn(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J,
                          void* user, N_Vector, N_Vector, N_Vector) {
     auto& m = *static_cast<Impl*>(user);
     try {
-      m.triplets_at(t, y, yp, r, cj);
-      bool cached = m.slot.size() == m.triplets.size();
-      for (std::size_t k = 0; cached && k < m.triplets.size(); ++k)
-        cached = m.keys[k] == key(m.triplets[k]);
-      if (!cached) m.build_pattern();
+      if (!m.reuse_allowed()) m.form_stiffness(t, y, yp, r);
       const std::size_t n = m.system->size(), nnz = m.csc_indices.size();
       if (static_cast<std::size_t>(SUNSparseMatrix_NNZ(J)) != nnz &&
           SUNSparseMatrix_Reallocate(J, static_cast<sunindextype>(nnz)) != 0)
@@ -129,8 +147,9 @@ struct PolygonIdaSolver::Impl {
       double* data = SUNSparseMatrix_Data(J);
       std::copy(m.csc_pointers.begin(), m.csc_pointers.end(), pointers);
       std::copy(m.csc_indices.begin(), m.csc_indices.end(), indices);
-      std::fill(data, data + nnz, 0.0);
-      for (std::size_t k = 0; k < m.triplets.size(); ++k) data[m.slot[k]] += m.triplets[k].value;
+      std::copy(m.stiffness.begin(), m.stiffness.end(), data);
+      const auto& mu = m.system->rate_coefficients();
+      for (std::size_t i = 0; i < n; ++i) data[m.diagonal_slot[i]] += cj * mu[i];
       const bool same = m.last_pointers.size() == n + 1 && m.last_indices.size() == nnz &&
                         std::equal(pointers, pointers + n + 1, m.last_pointers.begin()) &&
                         std::equal(indices, indices + nnz, m.last_indices.begin());
@@ -148,33 +167,151 @@ struct PolygonIdaSolver::Impl {
     }
   }
 
-  static std::int64_t key(const PolygonChain::Triplet& e) {
-    return (static_cast<std::int64_t>(e.row) << 32) | static_cast<std::uint32_t>(e.col);
+  // May this setup keep the last −∂φ/∂y? Only within jacobian_reuse_steps accepted steps of
+  // its formation and while no Newton iteration has failed to converge or step failed its
+  // error test since (IDA's own counters): a failure may come from a stale matrix (a hinge
+  // that started to yield, a contact that closed), and IDA does not retry with a fresh one
+  // after a setup, so the retry must bring it.
+  bool reuse_allowed() {
+    if (reuse_steps <= 0) return false;
+    long steps = 0, convergence_failures = 0, error_failures = 0;
+    check(IDAGetNumSteps(ida, &steps), "IDAGetNumSteps");
+    check(IDAGetNumNonlinSolvConvFails(ida, &convergence_failures), "IDAGetNumNonlinSolvConvFails");
+    check(IDAGetNumErrTestFails(ida, &error_failures), "IDAGetNumErrTestFails");
+    const bool reuse = !stiffness.empty() && steps - formed_at_step < reuse_steps &&
+                       convergence_failures == formed_failures[0] && error_failures == formed_failures[1];
+    if (!reuse) {
+      formed_at_step = steps;
+      formed_failures = {convergence_failures, error_failures};
+    }
+    return reuse;
   }
 
-  // The CSC pattern of the current triplets (Eigen sums duplicates, sorts rows) and each
-  // triplet's slot in it.
-  void build_pattern() {
-    eigen_triplets.clear();
-    eigen_triplets.reserve(triplets.size());
-    for (const auto& e : triplets) eigen_triplets.emplace_back(e.row, e.col, 0.0);
-    const auto n = static_cast<Eigen::Index>(system->size());
-    matrix.resize(n, n);
-    matrix.setFromTriplets(eigen_triplets.begin(), eigen_triplets.end());
-    matrix.makeCompressed();
-    const auto* outer = matrix.outerIndexPtr();
-    const auto* inner = matrix.innerIndexPtr();
-    csc_pointers.assign(outer, outer + n + 1);
-    csc_indices.assign(inner, inner + matrix.nonZeros());
-    keys.resize(triplets.size());
-    slot.resize(triplets.size());
+  // −∂φ/∂y at (t, y) into `stiffness` (cj = 0: the diagonal slots get μ's share at setup).
+  void form_stiffness(realtype t, N_Vector state, N_Vector state_rate, N_Vector r) {
+    ++formations;
+    if (jacobian_kind == PolygonJacobian::Analytic && !keys.empty()) {
+      stiffness.assign(csc_indices.size(), 0.0);
+      PolygonChain::JacobianScatter into;
+      into.keys = keys.data();
+      into.slots = slot.data();
+      into.count = keys.size();
+      into.data = stiffness.data();
+      if (system->analytic_jacobian_scatter(t, 0.0, N_VGetArrayPointer(state), into)) return;
+    }
+    triplets_at(t, state, state_rate, r, 0.0);
+    bool cached = slot.size() == triplets.size();
+    for (std::size_t k = 0; cached && k < triplets.size(); ++k) cached = keys[k] == key(triplets[k]);
+    if (!cached && !map_onto_pattern()) build_pattern();
+    stiffness.assign(csc_indices.size(), 0.0);
+    for (std::size_t k = 0; k < triplets.size(); ++k) stiffness[slot[k]] += triplets[k].value;
+  }
+
+  static std::int64_t key(const PolygonChain::Triplet& e) {
+    return PolygonChain::jacobian_key(static_cast<std::size_t>(e.row), static_cast<std::size_t>(e.col));
+  }
+
+  // A new entry sequence (a contact pair came or went) whose entries all lie in the current
+  // pattern keeps it: only the slots are looked up, and KLU keeps its symbolic analysis
+  // (the absent entries are explicit zeros). Contacts flicker in and out of the "near"
+  // band, so many sequence changes are such returns. Fails when an entry is new (then
+  // build_pattern keeps the old entries too if they stay within the slack) or when unused
+  // entries would make up more than pattern_slack of the pattern.
+  bool map_onto_pattern() {
+    keep_old_entries = false;
+    if (pattern_slack <= 0.0 || csc_indices.empty()) return false;
+    const std::size_t nnz = csc_indices.size();
+    used.assign(nnz, 0);
+    std::size_t distinct = 0, missing = 0;
+    new_slot.resize(triplets.size());
     for (std::size_t k = 0; k < triplets.size(); ++k) {
       const auto& e = triplets[k];
-      keys[k] = key(e);
-      const int* first = inner + outer[e.col];
-      const int* last = inner + outer[e.col + 1];
-      slot[k] = static_cast<std::size_t>(std::lower_bound(first, last, e.row) - inner);
+      const auto first = csc_indices.begin() + csc_pointers[static_cast<std::size_t>(e.col)];
+      const auto last = csc_indices.begin() + csc_pointers[static_cast<std::size_t>(e.col) + 1];
+      const auto at = std::lower_bound(first, last, static_cast<sunindextype>(e.row));
+      if (at == last || *at != e.row) {
+        ++missing;
+        continue;
+      }
+      new_slot[k] = static_cast<std::size_t>(at - csc_indices.begin());
+      if (!used[new_slot[k]]) {
+        used[new_slot[k]] = 1;
+        ++distinct;
+      }
     }
+    const auto unused = static_cast<double>(nnz - distinct);
+    if (missing > 0) {
+      keep_old_entries = unused <= pattern_slack * static_cast<double>(nnz + missing);
+      return false;
+    }
+    if (unused > pattern_slack * static_cast<double>(nnz)) return false;
+    slot.swap(new_slot);
+    keys.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) keys[k] = key(triplets[k]);
+    ++remaps;
+    return true;
+  }
+
+  // The CSC pattern of the current triplets, each triplet's slot in it and the diagonal's
+  // slots (every diagonal entry is emitted); with keep_old_entries the previous pattern's
+  // entries stay in it as zeros. Built by bucketing the entries per column, then per
+  // column marking each row once, sorting the column's distinct rows (~20) and reading
+  // each entry's slot from a row → slot scratch: no global sort, no search per entry (this
+  // ran at every changed entry sequence, ~1 ms each with Eigen's setFromTriplets).
+  void build_pattern() {
+    ++rebuilds;
+    const std::size_t n = system->size();
+    const std::size_t old_entries = keep_old_entries ? csc_indices.size() : 0;
+    const std::size_t total = triplets.size() + old_entries;
+    // Entry e < triplets.size() is triplet e, the others the old pattern's entries.
+    entry_row.resize(total);
+    entry_col.resize(total);
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      entry_row[k] = triplets[k].row;
+      entry_col[k] = triplets[k].col;
+    }
+    for (std::size_t c = 0, e = triplets.size(); old_entries > 0 && c < n; ++c)
+      for (auto i = csc_pointers[c]; i < csc_pointers[c + 1]; ++i, ++e) {
+        entry_row[e] = static_cast<int>(csc_indices[static_cast<std::size_t>(i)]);
+        entry_col[e] = static_cast<int>(c);
+      }
+    column_start.assign(n + 1, 0);
+    for (std::size_t e = 0; e < total; ++e) ++column_start[static_cast<std::size_t>(entry_col[e]) + 1];
+    for (std::size_t c = 0; c < n; ++c) column_start[c + 1] += column_start[c];
+    column_entries.resize(total);
+    fill_at.assign(column_start.begin(), column_start.end() - 1);
+    for (std::size_t e = 0; e < total; ++e) column_entries[fill_at[static_cast<std::size_t>(entry_col[e])]++] = e;
+    row_mark.assign(n, 0);
+    row_slot.resize(n);
+    csc_pointers.assign(n + 1, 0);
+    csc_indices.clear();
+    slot.resize(triplets.size());
+    diagonal_slot.assign(n, 0);
+    std::vector<sunindextype>& rows = column_rows;
+    for (std::size_t c = 0; c < n; ++c) {
+      rows.clear();
+      const auto mark = static_cast<int>(c) + 1;
+      for (std::size_t i = column_start[c]; i < column_start[c + 1]; ++i) {
+        const auto r = static_cast<std::size_t>(entry_row[column_entries[i]]);
+        if (row_mark[r] != mark) {
+          row_mark[r] = mark;
+          rows.push_back(static_cast<sunindextype>(r));
+        }
+      }
+      std::sort(rows.begin(), rows.end());
+      for (const auto r : rows) {
+        row_slot[static_cast<std::size_t>(r)] = csc_indices.size();
+        csc_indices.push_back(r);
+      }
+      csc_pointers[c + 1] = static_cast<sunindextype>(csc_indices.size());
+      for (std::size_t i = column_start[c]; i < column_start[c + 1]; ++i)
+        if (column_entries[i] < triplets.size())
+          slot[column_entries[i]] = row_slot[static_cast<std::size_t>(entry_row[column_entries[i]])];
+      if (row_mark[c] != mark) throw std::logic_error("PolygonIdaSolver: a diagonal entry is missing");
+      diagonal_slot[c] = row_slot[c];
+    }
+    keys.resize(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k) keys[k] = key(triplets[k]);
   }
 
   // Krylov solver's preconditioner setup: sparse LU of the same matrix.
@@ -213,6 +350,16 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
   auto& m = *impl_;
   m.system = &system;
   m.jacobian_kind = options.jacobian;
+  if (options.jacobian_reuse_steps < 0)
+    throw std::invalid_argument(fmt::format("PolygonIdaSolver: jacobian_reuse_steps {} must be ≥ 0",
+                                            options.jacobian_reuse_steps));
+  m.reuse_steps = options.jacobian_reuse_steps;
+  if (!(options.pattern_slack >= 0.0 && options.pattern_slack < 1.0))
+    throw std::invalid_argument(fmt::format("PolygonIdaSolver: pattern_slack {} must be in [0, 1)", options.pattern_slack));
+  m.pattern_slack = options.pattern_slack;
+  if (options.klu_ordering < 0 || options.klu_ordering > 2)
+    throw std::invalid_argument(
+        fmt::format("PolygonIdaSolver: klu_ordering {} must be 0 (AMD), 1 (COLAMD) or 2 (natural)", options.klu_ordering));
   const auto n = static_cast<sunindextype>(system.size());
   if (y0.size() != system.size()) throw std::invalid_argument("PolygonIdaSolver: state size");
   if (!(options.velocity_tolerance_factor > 0) || !(options.plastic_tolerance_factor > 0))
@@ -261,6 +408,7 @@ PolygonIdaSolver::PolygonIdaSolver(PolygonChain& system, double t0, const std::v
     if (!m.jacobian) throw IdaError("SUNSparseMatrix", -1, "SUNSparseMatrix returned no matrix");
     m.ls = SUNLinSol_KLU(m.y, m.jacobian, m.context);
     if (!m.ls) throw IdaError("SUNLinSol_KLU", -1, "SUNLinSol_KLU returned no solver");
+    check(SUNLinSol_KLUSetOrdering(m.ls, options.klu_ordering), "SUNLinSol_KLUSetOrdering");
     check(IDASetLinearSolver(m.ida, m.ls, m.jacobian), "IDASetLinearSolver");
     check(IDASetJacFn(m.ida, &Impl::jacobian_fn), "IDASetJacFn");
   } else {
@@ -335,6 +483,9 @@ PolygonIdaStatistics PolygonIdaSolver::statistics() const {
   check(IDAGetNumLinIters(m.ida, &s.linear_iterations), "IDAGetNumLinIters");
   s.preconditioner_setups = m.setups;
   s.symbolic_factorisations = m.symbolic;
+  s.jacobian_formations = m.formations;
+  s.pattern_rebuilds = m.rebuilds;
+  s.pattern_remaps = m.remaps;
   return s;
 }
 

@@ -1,7 +1,8 @@
 // IDA for the Level 2 polygon chain (THEORY §4.4): BDF on F(t, y, y′) = 0. The iteration
 // matrix ∂F/∂y + cj ∂F/∂y′ is banded per ring plus contact couplings whose pattern changes as
-// contacts open and close; it is rebuilt (coloured finite differences,
-// PolygonChain::sparse_jacobian) at every linear-solver setup. The dense and band solvers of
+// contacts open and close; it is formed at linear-solver setups (analytic by default,
+// PolygonChain::analytic_jacobian_scatter, or coloured differences) with ∂F/∂y kept apart
+// from cj ∂F/∂y′ = cj diag μ (README, Level 2 per-step cost). The dense and band solvers of
 // IdaSolver would cost O(n³) or O(n·bw²) with bw ≈ half a ring. Two linear solvers:
 //   * Direct (default): a sparse direct solve (SUNDIALS' KLU on a compressed-column matrix;
 //     the symbolic analysis is redone only when the contact pattern changes). One
@@ -69,6 +70,20 @@ struct PolygonIdaOptions {
   // 1.3e-3 at 0.1; 0.03 brings it to 0.9e-4 and 2.5e-4 for ~10–20 % more Newton work.
   // (SPGMR, whose Jacobian–vector products are exact, drifts less at 0.33: 2.3e-4.)
   double nonlinear_convergence_coefficient = 0.03;
+  // Direct solver: a setup keeps the last ∂φ/∂y (and only adds the new cj ∂F/∂y′ = cj diag μ)
+  // while fewer than this many steps have been accepted since it was formed and no step has
+  // failed since; 0 forms it at every setup. IDA asks for a setup when cj has changed, with
+  // the state barely moved.
+  int jacobian_reuse_steps = 0;
+  // KLU's fill-reducing ordering (SUNLinSol_KLUSetOrdering): 0 AMD, 1 COLAMD (SUNDIALS'
+  // default), 2 natural. The matrix is structurally near-symmetric (ring bands, contact
+  // couplings both ways), the case AMD is made for.
+  int klu_ordering = 1;
+  // Direct solver: when the contact pattern changes, entries that vanished stay in the
+  // compressed-column pattern as zeros while they make up at most this fraction of it, so
+  // that a contact that returns needs no new symbolic factorisation; 0 keeps the exact
+  // pattern.
+  double pattern_slack = 0.0;
   // When set, every accepted step is appended here (IDA is then driven one step at a time;
   // the steps are the same as without the log).
   std::vector<PolygonIdaStep>* step_log = nullptr;
@@ -77,7 +92,10 @@ struct PolygonIdaOptions {
 struct PolygonIdaStatistics {
   long steps = 0, residual_evaluations = 0, nonlinear_iterations = 0, error_test_failures = 0,
        nonlinear_convergence_failures = 0, preconditioner_setups = 0, linear_iterations = 0,
-       symbolic_factorisations = 0;  // direct solver: setups whose contact pattern changed
+       symbolic_factorisations = 0,  // direct solver: setups whose contact pattern changed
+       jacobian_formations = 0,      // direct solver: setups that formed ∂φ/∂y anew
+       pattern_rebuilds = 0,  // direct solver: entry sequences that needed a new CSC pattern
+       pattern_remaps = 0;    // … and those mapped onto the old one (pattern_slack)
 };
 
 class PolygonIdaSolver {

@@ -107,6 +107,9 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     io.step_log = options.ida_step_log;
     io.velocity_tolerance_factor = options.velocity_tolerance_factor;
     io.plastic_tolerance_factor = options.plastic_tolerance_factor;
+    io.jacobian_reuse_steps = options.ida_jacobian_reuse_steps;
+    io.klu_ordering = options.ida_klu_ordering;
+    io.pattern_slack = options.ida_pattern_slack;
     PolygonIdaSolver ida(chain, 0.0, y, io);
     march(ida);
     const auto s = ida.statistics();
@@ -117,6 +120,9 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.jacobian_setups = s.preconditioner_setups;
     out.linear_iterations = s.linear_iterations;
     out.symbolic_factorisations = s.symbolic_factorisations;
+    out.jacobian_formations = s.jacobian_formations;
+    out.pattern_rebuilds = s.pattern_rebuilds;
+    out.pattern_remaps = s.pattern_remaps;
   } else if (options.integrator == PolygonIntegrator::CentralDifference) {
     CentralDifferenceOptions co;
     co.safety = options.central_difference_safety;

@@ -31,6 +31,9 @@ struct PolygonRunOptions {
   PolygonLinearSolver ida_linear_solver = PolygonLinearSolver::Direct;  // PolygonIdaOptions
   PolygonJacobian ida_jacobian = PolygonJacobian::Analytic;             // PolygonIdaOptions
   std::vector<PolygonIdaStep>* ida_step_log = nullptr;                  // PolygonIdaOptions
+  int ida_jacobian_reuse_steps = 0;  // PolygonIdaOptions::jacobian_reuse_steps
+  int ida_klu_ordering = 1;          // PolygonIdaOptions::klu_ordering
+  double ida_pattern_slack = 0.0;    // PolygonIdaOptions::pattern_slack
   // Central difference: × the stable-step bound (CentralDifferenceOptions::safety); the
   // tolerances above do not apply to it.
   double central_difference_safety = 0.8;
@@ -52,7 +55,9 @@ struct PolygonRunOutput {
   double arrest_time_s = -1.0;         // first time the impactor speed toward the chain ≤ 0
   double end_time_s = 0.0;
   long steps = 0, rejected_steps = 0, nonlinear_iterations = 0, rhs_evaluations = 0,
-       jacobian_setups = 0, linear_iterations = 0, symbolic_factorisations = 0;
+       jacobian_setups = 0, linear_iterations = 0, symbolic_factorisations = 0,
+       jacobian_formations = 0,  // IDA direct: setups that formed ∂φ/∂y anew
+       pattern_rebuilds = 0, pattern_remaps = 0;  // PolygonIdaStatistics
   // Central difference: the smallest and largest step taken and the shortest flow
   // relaxation time met (CentralDifferenceStatistics); 0 for the other integrators.
   double min_step_s = 0.0, max_step_s = 0.0, min_flow_relaxation_s = 0.0;

@@ -48,6 +48,8 @@ struct BenchOptions {
   std::string integrator = "ida";
   std::optional<double> rtol;
   std::optional<double> safety;
+  std::optional<int> jacobian_reuse, klu_ordering;
+  std::optional<double> pattern_slack;
 };
 
 void bench(const BenchOptions& o) {
@@ -55,6 +57,9 @@ void bench(const BenchOptions& o) {
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   Level2Settings settings;
   if (o.safety) settings.central_difference_safety = *o.safety;
+  if (o.jacobian_reuse) settings.jacobian_reuse_steps = *o.jacobian_reuse;
+  if (o.klu_ordering) settings.klu_ordering = *o.klu_ordering;
+  if (o.pattern_slack) settings.pattern_slack = *o.pattern_slack;
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -70,6 +75,11 @@ void bench(const BenchOptions& o) {
              scene.name, o.integrator, scene.hinge.nodes_per_ring, last.relative_tolerance_used, median,
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
              last.raw.symbolic_factorisations, last.raw.linear_iterations, last.raw.energy_balance_error);
+  if (opt.integrator == HingeIntegrator::Ida)
+    fmt::print("IDA: {} matrix formations, {} new patterns, {} kept patterns, {} rejected steps, {} Newton "
+               "iterations\n",
+               last.raw.jacobian_formations, last.raw.pattern_rebuilds, last.raw.pattern_remaps,
+               last.raw.rejected_steps, last.raw.nonlinear_iterations);
   if (opt.integrator == HingeIntegrator::CentralDifference)
     fmt::print("central difference: safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
                "relaxation time {:.3g} s\n",
@@ -91,6 +101,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--integrator", o->integrator, "ida | odeint | central_difference");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (Level 2 raises values below 1e-6 to 1e-3)");
   cmd->add_option("--safety", o->safety, "central_difference: factor on the stable-step bound, in (0, 1]");
+  cmd->add_option("--jacobian-reuse", o->jacobian_reuse, "ida: steps a formed dphi/dy may serve (0: every setup)");
+  cmd->add_option("--klu-ordering", o->klu_ordering, "ida: KLU ordering, 0 AMD, 1 COLAMD, 2 natural");
+  cmd->add_option("--pattern-slack", o->pattern_slack, "ida: fraction of stale zero entries kept in the pattern, [0, 1)");
   cmd->callback([o] { bench(*o); });
 }
 
