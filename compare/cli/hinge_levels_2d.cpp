@@ -5,6 +5,7 @@
 //   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
+//       [--dampers implicit|explicit]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -19,6 +20,8 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_2d.hpp"
@@ -48,6 +51,7 @@ struct BenchOptions {
   std::string integrator = "ida";
   std::optional<double> rtol;
   std::optional<double> safety;
+  std::string dampers = "implicit";
 };
 
 void bench(const BenchOptions& o) {
@@ -55,6 +59,9 @@ void bench(const BenchOptions& o) {
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   Level2Settings settings;
   if (o.safety) settings.central_difference_safety = *o.safety;
+  if (o.dampers != "implicit" && o.dampers != "explicit")
+    throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
+  settings.central_difference_implicit_dampers = o.dampers == "implicit";
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -71,9 +78,9 @@ void bench(const BenchOptions& o) {
              walls.size(), last.raw.steps, last.raw.rhs_evaluations, last.raw.jacobian_setups,
              last.raw.symbolic_factorisations, last.raw.linear_iterations, last.raw.energy_balance_error);
   if (opt.integrator == HingeIntegrator::CentralDifference)
-    fmt::print("central difference: safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
+    fmt::print("central difference: {} dampers, safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
                "relaxation time {:.3g} s\n",
-               settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
+               o.dampers, settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
@@ -91,6 +98,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--integrator", o->integrator, "ida | odeint | central_difference");
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (Level 2 raises values below 1e-6 to 1e-3)");
   cmd->add_option("--safety", o->safety, "central_difference: factor on the stable-step bound, in (0, 1]");
+  cmd->add_option("--dampers", o->dampers,
+                  "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
   cmd->callback([o] { bench(*o); });
 }
 

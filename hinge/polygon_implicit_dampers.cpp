@@ -1,0 +1,193 @@
+// Implicit Kelvin–Voigt ring dampers for the central-difference driver
+// (PolygonChain::ring_damper_step, polygon_chain.hpp; polygon_central_difference.hpp).
+//
+// The bar damper of bar k and the hinge damper of hinge k (PolygonChainInput: c_b ℓ̇ and
+// c_θ θ̇, THEORY §4.3) are linear in the node velocities: their forces are −C(x) v with
+//   C = Σ_bars c_b g gᵀ (g = ∂ℓ/∂p = (−e, e) on nodes k, k+1)
+//     + Σ_hinges c_θ g gᵀ (g = ∂θ/∂p = (−a, a + b, −b) on k−1, k, k+1, a = n_{k−1}/ℓ_{k−1},
+//       b = n_k/ℓ_k, the gradients polygon_ring_forces.cpp uses),
+// symmetric positive semi-definite and coupling only nodes two apart on one ring. The half
+// model's rows are those of the independent nodes weighted as φ (axis nodes ½): with the
+// mirror expansion E of the independent velocities this is ½ EᵀC_full E (the full ring's
+// dissipation function halved), symmetric as well; the axis nodes' x rows are left out
+// (their velocity stays 0 as in φ). Ties and contacts couple rings; they stay explicit.
+//
+// Each ring's matrix is stored as a profile (skyline) lower triangle: a row spans from its
+// first coupled column to the diagonal, and Cholesky keeps the profile. Open rows (the half
+// model) have bandwidth 5; the full ring's wrap-around gives the last node's rows a full
+// profile, but the inner products along them stay short (they run from the later of the two
+// rows' first columns), so one factorisation costs O(N) either way.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hinge/polygon_chain.hpp"
+
+namespace ringcrush::hinge {
+
+namespace {
+
+// d = C v for a symmetric C stored as a profile lower triangle; row(i) maps the ring's row i
+// to its place in the state-length arrays v and d.
+template <class Row>
+void profile_multiply(const std::vector<int>& first, const std::vector<int>& start, const std::vector<double>& c,
+                      int n, Row row, const double* v, double* d) {
+  for (int i = 0; i < n; ++i) d[row(i)] = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const double* ci = c.data() + start[u] - first[u];
+    double di = ci[i] * v[row(i)];
+    for (int j = first[u]; j < i; ++j) {
+      di += ci[j] * v[row(j)];
+      d[row(j)] += ci[j] * v[row(i)];
+    }
+    d[row(i)] += di;
+  }
+}
+
+}  // namespace
+
+// Calls sink(I, J, value) for every lower-triangle (I ≥ J) contribution of the current ring
+// geometry (px_, py_) to C, rows 2j + (0: x, 1: y) of independent node j.
+template <class Sink>
+void PolygonChain::for_each_damper_entry(Sink&& sink) const {
+  const double share = half_ ? 0.5 : 1.0;  // ½ EᵀC_full E in the half model
+  auto axis_x = [&](int j, int d) { return half_ && d == 0 && (j == 0 || j == n_ind_ - 1); };
+  auto scatter = [&](const int* nodes, const double (*g)[2], int count, double c) {
+    for (int p = 0; p < count; ++p) {
+      const auto [jp, sp] = independent(nodes[p]);
+      for (int dp = 0; dp < 2; ++dp) {
+        if (axis_x(jp, dp)) continue;
+        const double gp = g[p][dp] * (dp == 0 ? sp : 1.0);
+        const int I = 2 * jp + dp;
+        for (int q = 0; q < count; ++q) {
+          const auto [jq, sq] = independent(nodes[q]);
+          for (int dq = 0; dq < 2; ++dq) {
+            const int J = 2 * jq + dq;
+            if (J > I || axis_x(jq, dq)) continue;
+            sink(I, J, share * c * gp * g[q][dq] * (dq == 0 ? sq : 1.0));
+          }
+        }
+      }
+    }
+  };
+  for (int k = 0; k < n_full_; ++k) {
+    const int k1 = (k + 1) % n_full_;
+    const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
+    const double l = std::sqrt(bx * bx + by * by);
+    if (c_bar_ > 0) {
+      const int nodes[2] = {k, k1};
+      const double g[2][2] = {{-bx / l, -by / l}, {bx / l, by / l}};
+      scatter(nodes, g, 2, c_bar_);
+    }
+  }
+  if (!(c_hinge_ > 0)) return;
+  for (int k = 0; k < n_full_; ++k) {
+    const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
+    // n/ℓ of bar u = p_{i+1} − p_i is (−u_y, u_x)/ℓ².
+    const double ux = px_[k] - px_[km], uy = py_[k] - py_[km];
+    const double wx = px_[kp] - px_[k], wy = py_[kp] - py_[k];
+    const double lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
+    const double ax = -uy / lu, ay = ux / lu, bx = -wy / lw, by = wx / lw;
+    const int nodes[3] = {km, k, kp};
+    const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
+    scatter(nodes, g, 3, c_hinge_);
+  }
+}
+
+void PolygonChain::assemble_ring_dampers(int ring, const double* y) {
+  expand_ring(ring, y);
+  const int n = 2 * n_ind_;
+  if (kv_first_.empty()) {  // the profile depends on the topology only: found once
+    kv_first_.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) kv_first_[static_cast<std::size_t>(i)] = i;
+    for_each_damper_entry([&](int I, int J, double) {
+      auto& f = kv_first_[static_cast<std::size_t>(I)];
+      f = std::min(f, J);
+    });
+    kv_start_.resize(static_cast<std::size_t>(n) + 1);
+    kv_start_[0] = 0;
+    for (int i = 0; i < n; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      kv_start_[u + 1] = kv_start_[u] + (i - kv_first_[u] + 1);
+    }
+    kv_c_.resize(static_cast<std::size_t>(kv_start_.back()));
+    kv_factor_.resize(kv_c_.size());
+    kv_b_.resize(static_cast<std::size_t>(n));
+  }
+  std::fill(kv_c_.begin(), kv_c_.end(), 0.0);
+  for_each_damper_entry([&](int I, int J, double value) {
+    const auto u = static_cast<std::size_t>(I);
+    kv_c_[static_cast<std::size_t>(kv_start_[u] + J - kv_first_[u])] += value;
+  });
+}
+
+void PolygonChain::ring_damper_forces(const double* y, const double* v, double* d) {
+  const int n = 2 * n_ind_;
+  for (int r = 0; r < n_rings_; ++r) {
+    assemble_ring_dampers(r, y);
+    const std::size_t o = node_offset(r, 0) + 2;  // row 2j + c ↦ state o + 6j + c
+    auto row = [&](int i) { return o + 6 * static_cast<std::size_t>(i / 2) + static_cast<std::size_t>(i % 2); };
+    profile_multiply(kv_first_, kv_start_, kv_c_, n, row, v, d);
+  }
+}
+
+void PolygonChain::ring_damper_step(const double* y, double h, double* v, double* d) {
+  if (!(h >= 0.0))
+    throw std::invalid_argument("PolygonChain::ring_damper_step: h must be ≥ 0, got " + std::to_string(h));
+  const int n = 2 * n_ind_;
+  for (int r = 0; r < n_rings_; ++r) {
+    assemble_ring_dampers(r, y);
+    const std::size_t o = node_offset(r, 0) + 2;
+    auto row = [&](int i) { return o + 6 * static_cast<std::size_t>(i / 2) + static_cast<std::size_t>(i % 2); };
+    // μ + h C, and b = μ v* (0 on the axis x rows, whose C rows are empty: v stays 0).
+    for (std::size_t e = 0; e < kv_c_.size(); ++e) kv_factor_[e] = h * kv_c_[e];
+    for (int i = 0; i < n; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      const bool axis_x = half_ && i % 2 == 0 && (i == 0 || i == n - 2);
+      kv_factor_[static_cast<std::size_t>(kv_start_[u + 1] - 1)] += mu_[row(i)];
+      kv_b_[u] = axis_x ? 0.0 : mu_[row(i)] * v[row(i)];
+    }
+    // Profile Cholesky μ + h C = L Lᵀ in place (row i: L_ij for j = first_i…i).
+    for (int i = 0; i < n; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      double* li = kv_factor_.data() + kv_start_[u] - kv_first_[u];
+      for (int j = kv_first_[u]; j <= i; ++j) {
+        const auto w = static_cast<std::size_t>(j);
+        const double* lj = kv_factor_.data() + kv_start_[w] - kv_first_[w];
+        double s = li[j];
+        for (int k = std::max(kv_first_[u], kv_first_[w]); k < j; ++k) s -= li[k] * lj[k];
+        if (j < i) {
+          li[j] = s / lj[j];
+        } else {
+          if (!(s > 0.0))
+            throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite (ring " +
+                                     std::to_string(r) + ", row " + std::to_string(i) + ")");
+          li[i] = std::sqrt(s);
+        }
+      }
+    }
+    // L z = b, then Lᵀ v = z (column sweep over the rows of L).
+    for (int i = 0; i < n; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      const double* li = kv_factor_.data() + kv_start_[u] - kv_first_[u];
+      double s = kv_b_[u];
+      for (int k = kv_first_[u]; k < i; ++k) s -= li[k] * kv_b_[static_cast<std::size_t>(k)];
+      kv_b_[u] = s / li[i];
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      const auto u = static_cast<std::size_t>(i);
+      const double* li = kv_factor_.data() + kv_start_[u] - kv_first_[u];
+      const double vi = kv_b_[u] / li[i];
+      kv_b_[u] = vi;
+      for (int k = kv_first_[u]; k < i; ++k) kv_b_[static_cast<std::size_t>(k)] -= li[k] * vi;
+    }
+    for (int i = 0; i < n; ++i) v[row(i)] = kv_b_[static_cast<std::size_t>(i)];
+    // d = C v with this ring's C (still in kv_c_).
+    profile_multiply(kv_first_, kv_start_, kv_c_, n, row, v, d);
+  }
+}
+
+}  // namespace ringcrush::hinge
