@@ -334,6 +334,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   template <class Sink>
   void for_each_damper_entry(Sink&& sink) const;
   void assemble_ring_dampers(int ring, const double* y);
+  // The half model's fast path: the open band (bandwidth 5) of a ring assembled straight from
+  // y, band[6 i + q] = C(i, i − q); the rings' Cholesky factors interleaved in kv_band_l_.
+  std::vector<double> kv_band_c_, kv_band_l_, kv_inv_diag_;
+  void assemble_half_band(int ring, const double* y, double* band);
+  void half_band_step(const double* y, double h, double* v, double* d);
 };
 
 }  // namespace ringcrush::hinge

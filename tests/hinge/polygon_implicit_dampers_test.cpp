@@ -74,6 +74,10 @@ Eigen::MatrixXd damping_matrix(PolygonChain& chain, std::vector<double> y, const
 TEST(PolygonImplicitDampers, BandedSolveEqualsDenseSolve) {
   for (bool half : {false, true}) {
     PolygonChain chain(lone_ring(half));
+    PolygonChainInput three = lone_ring(half);  // the half model solves all rings together
+    three.rings = 3;
+    three.pitch_m = 2.0 * three.outer_diameter_m;  // apart: no ring–ring contact
+    PolygonChain rings(three);
     auto y = lifted_state(chain);
     std::mt19937 gen(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -106,6 +110,29 @@ TEST(PolygonImplicitDampers, BandedSolveEqualsDenseSolve) {
       const auto r = rows[static_cast<std::size_t>(i)];
       EXPECT_NEAR(v[r], dense(i), 1e-12 * dense.norm()) << "half " << half << " row " << i;
       EXPECT_NEAR(d[r], Cv(i), 1e-12 * Cv.norm()) << "half " << half << " row " << i;
+    }
+    // The same ring as ring 2 of three far-apart rings (rings 1 and 3 undeformed and still):
+    // the same solution.
+    auto y3 = rings.initial_state();
+    y3[rings.body_offset(0)] += 0.01;
+    const double shift = y3[rings.node_offset(1, 0) + 1] - chain.initial_state()[chain.node_offset(0, 0) + 1];
+    for (int j = 0; j < chain.independent_nodes(); ++j)
+      for (std::size_t c = 0; c < 4; ++c)
+        y3[rings.node_offset(1, j) + c] = y[chain.node_offset(0, j) + c] + (c == 1 ? shift : 0.0);
+    for (int j = 0; j < chain.independent_nodes(); ++j)
+      for (std::size_t c = 2; c < 4; ++c) y3[rings.node_offset(1, j) + c] = v[chain.node_offset(0, j) + c];
+    // v now holds the solution: restore v* on ring 2 first.
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto r = rows[static_cast<std::size_t>(i)];
+      y3[rings.node_offset(1, 0) + (r - chain.node_offset(0, 0))] = vstar(i);
+    }
+    std::vector<double> d3(y3.size(), 0.0);
+    rings.ring_damper_step(y3.data(), h, y3.data(), d3.data());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto r = rows[static_cast<std::size_t>(i)];
+      const auto r3 = rings.node_offset(1, 0) + (r - chain.node_offset(0, 0));
+      EXPECT_NEAR(y3[r3], dense(i), 1e-12 * dense.norm()) << "three rings, half " << half << " row " << i;
+      EXPECT_NEAR(d3[r3], Cv(i), 1e-12 * Cv.norm()) << "three rings, half " << half << " row " << i;
     }
     std::vector<double> d2(y.size(), 0.0);
     chain.ring_damper_forces(y.data(), v.data(), d2.data());
