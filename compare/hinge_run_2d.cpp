@@ -128,6 +128,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
                   : options.integrator == HingeIntegrator::Odeint ? hinge::PolygonIntegrator::Odeint
                                                                   : hinge::PolygonIntegrator::CentralDifference;
   po.central_difference_safety = s.central_difference_safety;
+  po.central_difference_implicit_dampers = s.central_difference_implicit_dampers;
   run.relative_tolerance_used = options.relative_tolerance >= s.min_relative_tolerance
                                     ? options.relative_tolerance
                                     : s.default_relative_tolerance;
@@ -289,6 +290,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"velocity_tolerance_factor", s.velocity_tolerance_factor},
         {"plastic_tolerance_factor", s.plastic_tolerance_factor},
         {"central_difference_safety", s.central_difference_safety},
+        {"central_difference_implicit_dampers", s.central_difference_implicit_dampers},
         {"wrap_min_inverted_arc_fraction", s.wrap_min_inverted_arc_fraction}}}};
   if (options.integrator == HingeIntegrator::CentralDifference)
     r.extra["central_difference"] = {{"min_step_s", raw.min_step_s},

@@ -50,6 +50,9 @@ struct Level2Settings {
   // integrator = "central_difference": the step is this × the stable-step bound
   // (hinge/polygon_central_difference.hpp), in (0, 1]; the tolerances do not apply.
   double central_difference_safety = 0.8;
+  // central_difference: Kelvin–Voigt ring dampers by the trapezoidal rule (a banded solve per
+  // ring, the step of the undamped stiffness) or explicit (hinge/polygon_central_difference.hpp).
+  bool central_difference_implicit_dampers = true;
   // Wrap flag: S > fraction · πR (compare/measures inverted_arc_length) decides; W is
   // reported beside it (measured at the impactor's arrest). THEORY §4.6 proposes 0.1 πR
   // (7.7 mm) and asks for calibration. On the polygon a single kinked node gives 2ℓ0 ≈ 6.4 mm

@@ -34,10 +34,24 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   }
   a_.resize(y_.size());
   a_next_.resize(y_.size());
+  chain_.set_implicit_ring_dampers(options.implicit_ring_dampers);
   // dt = 0: no flow, but the chain notes the hinge moments the first step's work starts from.
   double no_work = 0.0;
   chain_.rhs_with_flow_update(t_, y_.data(), 0.0, a_.data(), no_work, stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
+  if (options.implicit_ring_dampers) {
+    for (int r = 0; r < chain.ring_count(); ++r)
+      for (int j = 0; j < chain.independent_nodes(); ++j) {
+        const auto o = chain.node_offset(r, j);
+        node_velocity_rows_.insert(node_velocity_rows_.end(), {o + 2, o + 3});
+      }
+    damper_.assign(y_.size(), 0.0);
+    damper_next_.assign(y_.size(), 0.0);
+    v_start_.assign(y_.size(), 0.0);
+    v_half_.assign(y_.size(), 0.0);
+    chain_.ring_damper_forces(y_.data(), y_.data(), damper_.data());
+    for (const auto i : node_velocity_rows_) a_[i] -= damper_[i] / chain_.mass_row(i);
+  }
   dt_stable_ = options_.safety * chain_.stable_step();
   if (options_.max_step_s > 0) dt_stable_ = std::min(dt_stable_, options_.max_step_s);
 }
@@ -56,6 +70,9 @@ double PolygonCentralDifference::advance(double t_end) {
 void PolygonCentralDifference::step(double dt) {
   const std::size_t acc = chain_.accumulator_offset();
   const std::size_t nv = velocity_rows_.size();
+  const bool implicit = options_.implicit_ring_dampers;
+  if (implicit)
+    for (const auto i : node_velocity_rows_) v_start_[i] = y_[i];
   for (std::size_t i = 0; i < nv; ++i) {
     double& v = y_[velocity_rows_[i]];
     v += 0.5 * dt * a_[velocity_rows_[i]];
@@ -68,8 +85,22 @@ void PolygonCentralDifference::step(double dt) {
   t_ += dt;
   chain_.rhs_with_flow_update(t_, y_.data(), dt, a_next_.data(), y_[acc], stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
+  if (implicit)
+    for (const auto i : node_velocity_rows_) v_half_[i] = y_[i];
   for (std::size_t i = 0; i < nv; ++i) y_[velocity_rows_[i]] += 0.5 * dt * a_next_[velocity_rows_[i]];
   for (std::size_t k = 1; k < 4; ++k) y_[acc + k] += 0.5 * dt * a_next_[acc + k];
+  if (implicit) {
+    // The node rows now hold the explicit prediction v*; (μ + ½Δt C) v = μ v*, and the
+    // acceleration of the second half-kick (the next step's first) is (v_{n+1} − v_{n+½})/(½Δt).
+    chain_.ring_damper_step(y_.data(), 0.5 * dt, y_.data(), damper_next_.data());
+    double work = 0.0;
+    for (const auto i : node_velocity_rows_) {
+      a_next_[i] = (y_[i] - v_half_[i]) / (0.5 * dt);
+      work += damper_[i] * (v_start_[i] + v_half_[i]) + damper_next_[i] * (v_half_[i] + y_[i]);
+    }
+    y_[acc + 2] += 0.25 * dt * work;
+    damper_.swap(damper_next_);
+  }
   a_.swap(a_next_);
 
   ++stats_.steps;

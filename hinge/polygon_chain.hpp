@@ -222,6 +222,23 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // the same way; dt = min over nodes and bodies of (2/ω)(√(1 + ξ²) − ξ) (Belytschko et al.,
   // Nonlinear FE, §6.3), without safety factor.
   double stable_step() const;
+  // Kelvin–Voigt ring dampers applied implicitly by the central-difference driver
+  // (polygon_implicit_dampers.cpp). While set, rhs_with_flow_update leaves the bar and hinge
+  // dampers out of φ (and out of the damping power) and stable_step leaves them out of ξ;
+  // the driver applies them through ring_damper_step. Hunt–Crossley contact and mass
+  // damping stay explicit. IDA and Odeint (rhs, residual) are not affected.
+  void set_implicit_ring_dampers(bool on) { implicit_dampers_ = on; }
+  bool implicit_ring_dampers() const { return implicit_dampers_; }
+  // The dampers' forces are −C(x) v, C = Σ_bars c_b g gᵀ + Σ_hinges c_θ g gᵀ on the node
+  // velocity rows of each ring (g = ∂ℓ/∂p or ∂θ/∂p; the half model ½ EᵀC_full E, E the
+  // mirror expansion, axis nodes' x rows left out), in the units of φ's rows.
+  // ring_damper_forces: d = C(x) v with x from y; v and d are state-length arrays of which
+  // only the node velocity rows are read and written.
+  void ring_damper_forces(const double* y, const double* v, double* d);
+  // ring_damper_step: on entry v holds a velocity prediction v*; on exit the solution of
+  // (μ + h C(x)) v = μ v* and d = C(x) v (one banded Cholesky per ring, O(N)). v may be y.
+  void ring_damper_step(const double* y, double h, double* v, double* d);
+  double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
 
  private:
   struct Body {
@@ -348,6 +365,20 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
+  // Implicit ring dampers (polygon_implicit_dampers.cpp): C of one ring in a profile
+  // (skyline) lower triangle over its 2 n_ind velocity rows, row i spanning columns
+  // kv_first_[i]…i from kv_start_[i]; kv_factor_ the Cholesky factor of μ + h C.
+  bool implicit_dampers_ = false;
+  std::vector<int> kv_first_, kv_start_;
+  std::vector<double> kv_c_, kv_factor_, kv_b_;
+  template <class Sink>
+  void for_each_damper_entry(Sink&& sink) const;
+  void assemble_ring_dampers(int ring, const double* y);
+  // The half model's fast path: the open band (bandwidth 5) of a ring assembled straight from
+  // y, band[6 i + q] = C(i, i − q); the rings' Cholesky factors interleaved in kv_band_l_.
+  std::vector<double> kv_band_c_, kv_band_l_, kv_inv_diag_;
+  void assemble_half_band(int ring, const double* y, double* band);
+  void half_band_step(const double* y, double h, double* v, double* d);
 };
 
 }  // namespace ringcrush::hinge

@@ -19,6 +19,25 @@ namespace ringcrush::hinge {
 double PolygonChain::return_map(double trial, double a0, double dt, double& min_relaxation_time) const {
   if (!(flow(trial, a0).rate > 0.0)) return 0.0;
   const double mt = std::abs(trial);
+  if (q_ == 1.0) {
+    // The default Perzyna law in closed form: with M_y = M0 + H(ā + Δ) below the cap,
+    // g(Δ) = 0 is H Δ² + (M_y0 + dt C (k_θ + H)) Δ − dt C (|M_t| − M_y0) = 0 (its positive
+    // root, written without cancellation); at the cap, M_y = cap and g is linear. g is
+    // increasing, so the branch whose M_y agrees with the root's is the one root.
+    const double cdt = C_vp_ * dt, my0 = M0_ + H_ * a0;
+    double d = 0.0, my = cap_;
+    if (my0 < cap_) {
+      const double b = my0 + cdt * (k_theta_ + H_), c = cdt * (mt - my0);
+      d = 2.0 * c / (b + std::sqrt(b * b + 4.0 * H_ * c));
+      my = my0 + H_ * d;
+    }
+    if (!(my < cap_)) {
+      my = cap_;
+      d = cdt * (mt - cap_) / (cap_ + cdt * k_theta_);
+    }
+    min_relaxation_time = std::min(min_relaxation_time, my / (C_vp_ * k_theta_));
+    return d;
+  }
   // g(Δ) = Δ − dt λ̇(|M_trial| − k_θ Δ, ā + Δ): g(0) < 0, g(|M_trial|/k_θ) > 0 (M = 0
   // there), g increasing; Newton kept inside the bracket, bisection when it leaves it.
   double lo = 0.0, hi = mt / k_theta_, d = 0.0;
@@ -76,13 +95,22 @@ void PolygonChain::rhs_with_flow_update(double t, double* y, double dt, double* 
   flow_dt_ = dt;
   flow_work_ = 0.0;
   flow_relaxation_ = min_relaxation_time;
+  // Implicit ring dampers (polygon_implicit_dampers.cpp): the evaluation runs with the
+  // Kelvin–Voigt coefficients at zero, so φ and the damping power hold the other forces only.
+  const double c_bar = c_bar_, c_hinge = c_hinge_;
+  if (implicit_dampers_) c_bar_ = c_hinge_ = 0.0;
+  auto restore = [&] {
+    flow_y_ = nullptr;
+    c_bar_ = c_bar;
+    c_hinge_ = c_hinge;
+  };
   try {
     rhs(t, y, dydt);
   } catch (...) {
-    flow_y_ = nullptr;
+    restore();
     throw;
   }
-  flow_y_ = nullptr;
+  restore();
   plastic_work += flow_work_;
   min_relaxation_time = flow_relaxation_;
 }

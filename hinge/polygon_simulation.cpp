@@ -127,6 +127,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     CentralDifferenceOptions co;
     co.safety = options.central_difference_safety;
     co.max_step_s = options.max_step_s;
+    co.implicit_ring_dampers = options.central_difference_implicit_dampers;
     PolygonCentralDifference cd(chain, 0.0, y, co);
     march(cd);
     const auto& s = cd.statistics();

@@ -37,6 +37,7 @@ struct PolygonRunOptions {
   // Central difference: × the stable-step bound (CentralDifferenceOptions::safety); the
   // tolerances above do not apply to it.
   double central_difference_safety = 0.8;
+  bool central_difference_implicit_dampers = true;  // CentralDifferenceOptions::implicit_ring_dampers
 };
 
 struct PolygonHistory {  // full structure (both halves), SI

@@ -10,7 +10,9 @@
 // ω_i² = K_i/μ_i, ξ_i = C_i/(2√(K_i μ_i)) and dt_i = (2/ω_i)(√(1 + ξ_i²) − ξ_i), the
 // central-difference limit with damping taken at the half-step velocity (Belytschko, Liu &
 // Moran, Nonlinear Finite Elements, §6.3). The Kelvin–Voigt dampers (ζ = 1 of the shortest
-// modes by default, PolygonChainInput) put ξ ≈ 1 into every node and so halve the step.
+// modes by default, PolygonChainInput) put ξ ≈ 1 into every node and so halve the step —
+// unless the driver applies them implicitly (set_implicit_ring_dampers): then C_i holds the
+// contact and mass damping only, and the Kelvin–Voigt dampers do not shorten the step.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,7 +23,10 @@ namespace ringcrush::hinge {
 
 double PolygonChain::stable_step() const {
   const double k_ring = 4.0 * k_m_ + 16.0 * k_theta_ / (l0_ * l0_);
-  const double c_ring = 4.0 * c_bar_ + 16.0 * c_hinge_ / (l0_ * l0_) + in_.mass_damping_per_s * m_node_;
+  // Implicit ring dampers (trapezoidal in the driver, polygon_implicit_dampers.cpp) leave the
+  // step: the leapfrog with the damping at the step's ends is stable up to ω Δt = 2 for any ξ.
+  const double c_kv = implicit_dampers_ ? 0.0 : 4.0 * c_bar_ + 16.0 * c_hinge_ / (l0_ * l0_);
+  const double c_ring = c_kv + in_.mass_damping_per_s * m_node_;
   const bool welded = in_.joint == PolygonJoint::Welded;
   const int jb = half_ ? n_ind_ - 1 : n_full_ / 2;
   const double w_tie = half_ ? 0.5 : 1.0;

@@ -5,6 +5,7 @@
 //   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
+//       [--dampers implicit|explicit]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -19,6 +20,8 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_2d.hpp"
@@ -50,6 +53,7 @@ struct BenchOptions {
   std::optional<double> safety;
   std::optional<int> jacobian_reuse, klu_ordering;
   std::optional<double> pattern_slack;
+  std::string dampers = "implicit";
 };
 
 void bench(const BenchOptions& o) {
@@ -60,6 +64,9 @@ void bench(const BenchOptions& o) {
   if (o.jacobian_reuse) settings.jacobian_reuse_steps = *o.jacobian_reuse;
   if (o.klu_ordering) settings.klu_ordering = *o.klu_ordering;
   if (o.pattern_slack) settings.pattern_slack = *o.pattern_slack;
+  if (o.dampers != "implicit" && o.dampers != "explicit")
+    throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
+  settings.central_difference_implicit_dampers = o.dampers == "implicit";
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -81,9 +88,9 @@ void bench(const BenchOptions& o) {
                last.raw.jacobian_formations, last.raw.pattern_rebuilds, last.raw.pattern_remaps,
                last.raw.rejected_steps, last.raw.nonlinear_iterations);
   if (opt.integrator == HingeIntegrator::CentralDifference)
-    fmt::print("central difference: safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
+    fmt::print("central difference: {} dampers, safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
                "relaxation time {:.3g} s\n",
-               settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
+               o.dampers, settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
@@ -104,6 +111,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--jacobian-reuse", o->jacobian_reuse, "ida: steps a formed dphi/dy may serve (0: every setup)");
   cmd->add_option("--klu-ordering", o->klu_ordering, "ida: KLU ordering, 0 AMD, 1 COLAMD, 2 natural");
   cmd->add_option("--pattern-slack", o->pattern_slack, "ida: fraction of stale zero entries kept in the pattern, [0, 1)");
+  cmd->add_option("--dampers", o->dampers,
+                  "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
   cmd->callback([o] { bench(*o); });
 }
 
