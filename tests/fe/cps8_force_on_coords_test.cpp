@@ -31,15 +31,17 @@ struct ElementResult {
   std::array<PointState, 9> trial{};
 };
 
-// x_n: the element rotated by a large angle and moved, as a crushed ring's element.
-ElementCoords moved(const kernel_test::RandomElement& el, double angle) {
+// x_n: the element rotated by a large angle and moved, as a crushed ring's element; its
+// increment rotated with it (the same strain increment, seen in the rotated frame).
+void move(kernel_test::RandomElement& el, double angle, ElementCoords& x) {
   const double c = std::cos(angle), s = std::sin(angle);
-  ElementCoords x;
   for (int k = 0; k < 8; ++k) {
     x(k, 0) = c * el.x(k, 0) - s * el.x(k, 1) + 0.031;
     x(k, 1) = s * el.x(k, 0) + c * el.x(k, 1) - 0.017;
+    const double ux = el.du[2 * k], uy = el.du[2 * k + 1];
+    el.du[2 * k] = c * ux - s * uy;
+    el.du[2 * k + 1] = s * ux + c * uy;
   }
-  return x;
 }
 
 // Returns {points that yielded, points that stayed elastic}.
@@ -54,8 +56,9 @@ std::array<int, 2> compare_with_update_then_scalar(Integration rule, bool viscou
   std::vector<Cps8Geometry> stale, updated;
   for (int k = 0; k < count; ++k) {
     el.push_back(kernel_test::random_element(rng, k % 2 ? 1e-2 : 1e-4, k % 3 == 0));
-    x_n.push_back(moved(el.back(), angle(rng)));
     stale.push_back(cps8_geometry(el.back().x, rule, kWidth));  // the last increment's geometry
+    x_n.emplace_back();
+    move(el.back(), angle(rng), x_n.back());
     updated.push_back(stale.back());
     updater.update(x_n.back(), kWidth, updated.back());
   }
