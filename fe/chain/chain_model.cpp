@@ -113,8 +113,12 @@ struct ChainModel::Impl {
   std::unique_ptr<ForkJoin> fork;
   int split = 0;
   Eigen::VectorXd helper_force, helper_viscous;
-  // commit() moved x_n: the element geometry is re-derived in the next element pass.
-  bool geometry_stale = false;
+  // commit() moved x_n (++xn_epoch): an element's stored geometry is on x_n when its epoch
+  // equals xn_epoch; otherwise it is re-derived in the next element pass that reads it — or,
+  // in the force-only lane pass, formed inside the kernel and not stored at all
+  // (cps8_force_lanes_on_coords(); the epoch then stays behind).
+  std::vector<unsigned> geometry_epoch;
+  unsigned xn_epoch = 0;
   std::vector<ElementMatrix> tangents;  // want_tangent with two threads: scattered after the join
   // Force-only pass with two threads: the elements dealt in chunks, each into its slot.
   WorkDealer dealer;
@@ -134,7 +138,7 @@ struct ChainModel::Impl {
   // straight into the system (serial) or into `tangents` (threads). Two things ride along in
   // the same pass over the elements, so that they are split over the threads too and each
   // element is touched once per evaluation (performance, DESIGN.md):
-  //  - the geometry on x_n when a commit has moved it (geometry_stale; commit() only marks
+  //  - the geometry on x_n when a commit has moved it (geometry_epoch; commit() only marks
   //    it: the element is re-referenced just before its first evaluation of the increment);
   //  - the bulk-viscous force of the increment (bulk_viscosity.hpp) into `viscous` (all
   //    dofs; null when off): b1 ρ c_d L_e with L_e = 2 c_d / ω_e, ω_e the element eigenvalue.
@@ -175,7 +179,7 @@ struct ChainModel::Impl {
   // (viscous), after re-deriving its geometry on x_n when a commit has moved it.
   void evaluate_element(int e, const Eigen::VectorXd& u, bool want_tangent, bool viscous, Cps8Output& eo,
                         ElementVector& fv) {
-    if (geometry_stale) regeometry(e, e + 1, u_n);
+    if (geometry_epoch[e] != xn_epoch) regeometry(e, e + 1, u_n);
     const auto& conn = topo.mesh.elements[e];
     double ue[16];
     for (int a = 0; a < 8; ++a) {
@@ -199,13 +203,16 @@ struct ChainModel::Impl {
   }
 
   // Elements [e, e + 4) force only on vector lanes (cps8_force_lanes.hpp): bitwise
-  // evaluate_element() on each.
+  // evaluate_element() on each. A geometry not on x_n is formed inside the kernel from the
+  // coordinates and not stored (the explicit step: once per step, README session 9); where the
+  // kernel cannot (no AVX2, an inverted element), it is updated and stored first as before.
   struct LaneResults {
     std::array<Cps8Output, kCps8Lanes> out;
     std::array<ElementVector, kCps8Lanes> viscous;
   };
   void evaluate_lanes(int e, const Eigen::VectorXd& u, bool viscous, LaneResults& r) {
-    if (geometry_stale) regeometry_lanes(e, u_n);
+    bool stale = false;
+    for (int l = 0; l < kCps8Lanes; ++l) stale = stale || geometry_epoch[e + l] != xn_epoch;
     double ue[kCps8Lanes][16];
     std::array<BulkViscousLoad, kCps8Lanes> load;
     Cps8LaneGroup group;
@@ -222,6 +229,13 @@ struct ChainModel::Impl {
         load[l] = BulkViscousLoad{bulk_scale / std::sqrt(omega2_exact[e + l]), increment_time, &r.viscous[l]};
         group[l].viscous = &load[l];
       }
+    }
+    if (stale) {
+      std::array<ElementCoords, kCps8Lanes> xe;
+      coordinates_lanes(e, u_n, xe);
+      if (cps8_force_lanes_on_coords(group, updater.tables(), {&xe[0], &xe[1], &xe[2], &xe[3]}, width, material))
+        return;
+      regeometry_lanes(e, u_n);
     }
     cps8_force_lanes(group, material);
   }
@@ -298,26 +312,33 @@ struct ChainModel::Impl {
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("element {} (ring {}): {}", e + 1, mesh.element_ring[e] + 1, err.what()));
       }
+      geometry_epoch[e] = xn_epoch;
     }
   }
 
-  // regeometry(e, e + 4, u) on vector lanes (Cps8GeometryUpdater::update_lanes, bitwise); an
-  // inverted element is reported by regeometry(), with its number.
-  void regeometry_lanes(int e, const Eigen::VectorXd& u) {
+  // Node coordinates X + u of elements [e, e + 4), as regeometry() forms them.
+  void coordinates_lanes(int e, const Eigen::VectorXd& u, std::array<ElementCoords, kCps8Lanes>& xe) const {
     const auto& mesh = topo.mesh;
-    std::array<ElementCoords, kCps8Lanes> xe;
     for (int l = 0; l < kCps8Lanes; ++l)
       for (int a = 0; a < 8; ++a) {
         const int n = mesh.elements[e + l][a];
         xe[l](a, 0) = mesh.nodes[n].x() + u(2 * n);
         xe[l](a, 1) = mesh.nodes[n].y() + u(2 * n + 1);
       }
+  }
+
+  // regeometry(e, e + 4, u) on vector lanes (Cps8GeometryUpdater::update_lanes, bitwise); an
+  // inverted element is reported by regeometry(), with its number.
+  void regeometry_lanes(int e, const Eigen::VectorXd& u) {
+    std::array<ElementCoords, kCps8Lanes> xe;
+    coordinates_lanes(e, u, xe);
     try {
       updater.update_lanes({&xe[0], &xe[1], &xe[2], &xe[3]}, width,
                            {&geometry[e], &geometry[e + 1], &geometry[e + 2], &geometry[e + 3]});
     } catch (const std::invalid_argument&) {
       regeometry(e, e + kCps8Lanes, u);
     }
+    for (int l = 0; l < kCps8Lanes; ++l) geometry_epoch[e + l] = xn_epoch;
   }
 
   struct ElementJob {
@@ -365,6 +386,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   const double share = 1.0 / symmetry_factor();
   m.mass = Eigen::VectorXd::Zero(2 * nodes);
   m.geometry.resize(ne);
+  m.geometry_epoch.assign(ne, m.xn_epoch);  // cps8_geometry() below: on x_0
   m.element_mass.resize(ne);
   m.omega2_exact.resize(ne);
   m.shape_exact.resize(ne);
@@ -473,6 +495,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     m.slot_force.resize(ne);
     m.slot_viscous.resize(ne);
     m.slot_energy.resize(ne);
+    if (m.assembled) m.assembled->use_threads(m.fork.get());  // its power iteration on both threads
   }
   m.contributions.reserve(256);
   m.pressure.reserve(256);
@@ -649,7 +672,6 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), viscous ? m.helper_viscous.data() : nullptr,
                helper_elastic, helper_plastic);
   }
-  m.geometry_stale = false;
   out.force += m.helper_force;
   elastic += helper_elastic;
   plastic += helper_plastic;
@@ -682,7 +704,7 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   m.u_n = u;
   // The next increment is described on this configuration (kinematics.hpp): the element
   // geometry is re-derived on x_n in the next element pass (Impl::elements).
-  m.geometry_stale = true;
+  ++m.xn_epoch;
 }
 
 StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {

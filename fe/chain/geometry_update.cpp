@@ -27,39 +27,29 @@ inline void gradients(const ShapeGrad& dn, const Jacobian& j, double inv, ShapeG
 }
 }  // namespace
 
-Cps8GeometryUpdater::Cps8GeometryUpdater(Integration rule) : rule_(rule) {
-  const auto pts = gauss_rule(rule == Integration::Reduced ? 2 : 3);
-  points_ = static_cast<int>(pts.size());
-  ShapeVec n;
-  for (int i = 0; i < points_; ++i) {
-    cps8_shape(pts[i].g, pts[i].h, n, dn_[i]);
-    weight_[i] = pts[i].weight;
-  }
-  const auto red = gauss_rule(2);
-  for (int r = 0; r < 4; ++r) cps8_shape(red[r].g, red[r].h, n, dn_reduced_[r]);
-}
+Cps8GeometryUpdater::Cps8GeometryUpdater(Integration rule) : t_(cps8_rule_tables(rule)) {}
 
 // In three passes over the points — Jacobians, the reciprocals of their determinants,
 // gradients — rather than point by point: the 13 divisions are then independent and overlap
 // in the CPU instead of each holding up its point's gradients (perf: that wait was a fifth
 // of the update). Per point the operations are those of the point-by-point form.
 void Cps8GeometryUpdater::update(const ElementCoords& x, double thickness, Cps8Geometry& geo) const {
-  if (geo.rule != rule_ || geo.points != points_)
+  if (geo.rule != t_.rule || geo.points != t_.points)
     throw std::logic_error("Cps8GeometryUpdater: geometry built for another integration rule");
-  const int reduced = rule_ == Integration::Selective ? 4 : 0, n = points_ + reduced;
-  const auto dn = [&](int i) -> const ShapeGrad& { return i < points_ ? dn_[i] : dn_reduced_[i - points_]; };
+  const int points = t_.points, reduced = t_.rule == Integration::Selective ? 4 : 0, n = points + reduced;
+  const auto dn = [&](int i) -> const ShapeGrad& { return i < points ? t_.dn[i] : t_.dn_reduced[i - points]; };
   std::array<Jacobian, 13> j;
   std::array<double, 13> inv;
   for (int i = 0; i < n; ++i) j[i] = jacobian(dn(i), x);
-  for (int i = 0; i < points_; ++i)
+  for (int i = 0; i < points; ++i)
     if (!(j[i].det > 0))
       throw std::invalid_argument(fmt::format("CPS8 element inverted or degenerate (det J = {:g})", j[i].det));
   for (int i = 0; i < n; ++i) inv[i] = 1.0 / j[i].det;
-  for (int i = 0; i < points_; ++i) {
-    gradients(dn_[i], j[i], inv[i], geo.dndx[i]);
-    geo.weight[i] = weight_[i] * j[i].det * thickness;
+  for (int i = 0; i < points; ++i) {
+    gradients(t_.dn[i], j[i], inv[i], geo.dndx[i]);
+    geo.weight[i] = t_.weight[i] * j[i].det * thickness;
   }
-  for (int r = 0; r < reduced; ++r) gradients(dn_reduced_[r], j[points_ + r], inv[points_ + r], geo.dndx_reduced[r]);
+  for (int r = 0; r < reduced; ++r) gradients(t_.dn_reduced[r], j[points + r], inv[points + r], geo.dndx_reduced[r]);
 }
 
 }  // namespace ringcrush::fe

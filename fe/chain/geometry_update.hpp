@@ -8,6 +8,7 @@
 #include <array>
 
 #include "fe/element/cps8_element.hpp"
+#include "fe/element/cps8_rule_tables.hpp"
 
 namespace ringcrush::fe {
 
@@ -26,13 +27,11 @@ class Cps8GeometryUpdater {
                     const std::array<Cps8Geometry*, 4>& geo) const;
   // Whether update_lanes() runs on vector lanes on this CPU and build.
   static bool lanes_vectorised();
+  // The rule's tables the geometry is formed from (also used by cps8_force_lanes_on_coords()).
+  const Cps8RuleTables& tables() const { return t_; }
 
  private:
-  Integration rule_;
-  int points_;
-  std::array<ShapeGrad, 9> dn_{};          // ∂N/∂ξ at the stress points
-  std::array<double, 9> weight_{};         // Gauss weights
-  std::array<ShapeGrad, 4> dn_reduced_{};  // Selective: ∂N/∂ξ at the 2×2 points
+  Cps8RuleTables t_;
 };
 
 }  // namespace ringcrush::fe

@@ -24,17 +24,54 @@ AssembledEigenvalue::AssembledEigenvalue(std::vector<std::array<int, 16>> elemen
   y_.resize(n);
 }
 
-// y = M^{-1/2} (Σ_e s_e K_e) M^{-1/2} x.
-void AssembledEigenvalue::apply(const std::vector<ElementMatrix>& k, const std::vector<double>& scale,
-                                const std::vector<ContactContribution>& springs, const Eigen::VectorXd& x,
-                                Eigen::VectorXd& y) const {
-  y.setZero();
+void AssembledEigenvalue::use_threads(ForkJoin* fork) {
+  fork_ = fork;
+  if (fork_) products_.resize(dofs_.size());
+}
+
+void AssembledEigenvalue::element_products(int e0, int e1, const std::vector<ElementMatrix>& k,
+                                           const std::vector<double>& scale, const Eigen::VectorXd& x) {
   ElementVector xe, ye;
-  for (std::size_t e = 0; e < dofs_.size(); ++e) {
+  for (int e = e0; e < e1; ++e) {
     const auto& d = dofs_[e];
     for (int i = 0; i < 16; ++i) xe(i) = x(d[i]) * inv_sqrt_mass_(d[i]);
     ye.noalias() = k[e] * xe;
-    for (int i = 0; i < 16; ++i) y(d[i]) += scale[e] * ye(i) * inv_sqrt_mass_(d[i]);
+    for (int i = 0; i < 16; ++i) products_[e](i) = scale[e] * ye(i) * inv_sqrt_mass_(d[i]);
+  }
+}
+
+// y = M^{-1/2} (Σ_e s_e K_e) M^{-1/2} x. Each element's term is the same product on either
+// path and y sums the terms in element order, so one and two threads give the same bits.
+void AssembledEigenvalue::apply(const std::vector<ElementMatrix>& k, const std::vector<double>& scale,
+                                const std::vector<ContactContribution>& springs, const Eigen::VectorXd& x,
+                                Eigen::VectorXd& y) {
+  y.setZero();
+  const int ne = static_cast<int>(dofs_.size());
+  if (fork_) {
+    struct Half {
+      AssembledEigenvalue* self;
+      const std::vector<ElementMatrix>* k;
+      const std::vector<double>* scale;
+      const Eigen::VectorXd* x;
+      int e0, e1;
+      static void run(void* p) {
+        auto& h = *static_cast<Half*>(p);
+        h.self->element_products(h.e0, h.e1, *h.k, *h.scale, *h.x);
+      }
+    } helper{this, &k, &scale, &x, ne / 2, ne};
+    fork_->run(&Half::run, &helper, [&] { element_products(0, ne / 2, k, scale, x); });
+    for (int e = 0; e < ne; ++e) {
+      const auto& d = dofs_[e];
+      for (int i = 0; i < 16; ++i) y(d[i]) += products_[e](i);
+    }
+  } else {
+    ElementVector xe, ye;
+    for (int e = 0; e < ne; ++e) {
+      const auto& d = dofs_[e];
+      for (int i = 0; i < 16; ++i) xe(i) = x(d[i]) * inv_sqrt_mass_(d[i]);
+      ye.noalias() = k[e] * xe;
+      for (int i = 0; i < 16; ++i) y(d[i]) += scale[e] * ye(i) * inv_sqrt_mass_(d[i]);
+    }
   }
   // Penalty springs k G Gᵀ (the part of the contact tangent without the curvature terms).
   for (const auto& c : springs) {

@@ -10,6 +10,7 @@
 #include "fe/element/cps8_force_lanes.hpp"
 
 #include "fe/element/element_lanes.hpp"
+#include "fe/element/geometry_lanes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,22 +50,12 @@ constexpr int kHistoryAt = offsetof(PointState, plastic_strain) / sizeof(double)
 static_assert(kStressAt == 0 && kHistoryAt == 5 && offsetof(PointState, peeq) == 6 * sizeof(double) &&
               offsetof(PointState, thickness_stretch) == 8 * sizeof(double));
 
-// The kernel body, compiled once per instruction set (below); always inlined so that each
-// copy is compiled wholly for its own target.
+// ∂N/∂x and the point weights of the four elements from their Cps8Geometry, by 4 × 4
+// transposes of 4 consecutive values of each element (one vector load per element,
+// shuffles): filling lanes one value at a time stalled on the store-to-load forwarding and
+// took half of the kernel (perf).
 template <bool kShuffle>
-[[gnu::always_inline]] inline void force_lanes(const Cps8LaneGroup& lane, const J2PlaneStress& material) {
-  const Cps8Geometry& g0 = *lane[0].geo;
-  const bool selective = g0.rule == Integration::Selective;
-  const bool viscous = lane[0].viscous != nullptr;
-  for (const Cps8Lane& l : lane)
-    if (l.geo->rule != g0.rule || l.geo->points != g0.points || (l.viscous != nullptr) != viscous)
-      throw std::invalid_argument("cps8_force_lanes: the four elements mix integration rules or bulk viscosity");
-  const int np = g0.points, nr = selective ? 4 : 0, n = np + nr;
-
-  // Gathered by 4 × 4 transposes of 4 consecutive values of each element (one vector load
-  // per element, shuffles): filling lanes one value at a time stalled on the store-to-load
-  // forwarding and took half of the kernel (perf).
-  GroupInput in;
+[[gnu::always_inline]] inline void gather_geometry(const Cps8LaneGroup& lane, int np, int n, GroupInput& in) {
   for (int i = 0; i < n; ++i) {
     const double* g[kCps8Lanes];
     for (int e = 0; e < kCps8Lanes; ++e)
@@ -82,6 +73,49 @@ template <bool kShuffle>
     for (int i = 0; i + 4 <= np; i += 4) gather_transposed<kShuffle>(w, i, &in.weight[i]);
     if (np == 9) in.weight[8] = Lanes{w[0][8], w[1][8], w[2][8], w[3][8]};
   }
+}
+
+// Where the kernel's ∂N/∂x and point weights come from when it forms them itself
+// (kFormGeometry): the rule's tables and the elements' coordinates on x_n.
+struct GeometrySource {
+  const Cps8RuleTables* tables = nullptr;
+  const std::array<const ElementCoords*, kCps8Lanes>* x = nullptr;
+  double thickness = 0;
+};
+
+// The kernel body, compiled once per instruction set (below); always inlined so that each
+// copy is compiled wholly for its own target. kFormGeometry: ∂N/∂x and the weights are formed
+// on the lanes from source (geometry_lanes.hpp, bitwise Cps8GeometryUpdater::update()) instead
+// of gathered from each element's Cps8Geometry; returns false, nothing written, if an element
+// is inverted or degenerate there. Otherwise always true.
+template <bool kShuffle, bool kFormGeometry>
+[[gnu::always_inline]] inline bool force_lanes(const Cps8LaneGroup& lane, const J2PlaneStress& material,
+                                               const GeometrySource& source) {
+  const Cps8Geometry& g0 = *lane[0].geo;
+  const bool selective = g0.rule == Integration::Selective;
+  const bool viscous = lane[0].viscous != nullptr;
+  for (const Cps8Lane& l : lane)
+    if (l.geo->rule != g0.rule || l.geo->points != g0.points || (l.viscous != nullptr) != viscous)
+      throw std::invalid_argument("cps8_force_lanes: the four elements mix integration rules or bulk viscosity");
+  const int np = g0.points, nr = selective ? 4 : 0, n = np + nr;
+
+  GroupInput in;
+  if constexpr (kFormGeometry) {
+    // The geometry straight into the kernel's arrays: not written to the elements' 2.6 kB
+    // Cps8Geometry and read back (that round trip was ≈ 15 % of the step; README session 9).
+    const Cps8RuleTables& t = *source.tables;
+    if (t.rule != g0.rule || t.points != np)
+      throw std::invalid_argument("cps8_force_lanes_on_coords: the rule tables are not the elements' rule");
+    Lanes xs[2][8];
+    gather_coords<kShuffle>(*source.x, xs);
+    PointJacobian jac[kMaxPoints];
+    if (!jacobians_lanes(t, xs, jac)) return false;
+    for (int i = 0; i < n; ++i) gradients_lanes(t, i, jac[i], in.d[i]);
+    for (int i = 0; i < np; ++i) weight_lanes(t, i, jac[i], source.thickness, in.weight[i]);
+  } else {
+    gather_geometry<kShuffle>(lane, np, n, in);
+  }
+
   // The Barlow matrix depends on the rule only: one element's, unless they differ.
   const bool same_barlow = lane[1].geo->barlow == g0.barlow && lane[2].geo->barlow == g0.barlow &&
                            lane[3].geo->barlow == g0.barlow;
@@ -284,12 +318,13 @@ template <bool kShuffle>
     lane[l].out->elastic_energy = elastic_energy[l];
     lane[l].out->plastic_work = plastic_work[l];
   }
+  return true;
 }
 
 }  // namespace
 
 void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes<false>(group, material);
+  force_lanes<false, false>(group, material, GeometrySource{});
 }
 
 // AVX2 without FMA: "avx2" implies AVX but not FMA in GCC, so no product is fused into a sum
@@ -297,11 +332,17 @@ void cps8_force_lanes_portable(const Cps8LaneGroup& group, const J2PlaneStress& 
 // differently from the scalar kernel).
 #if defined(__x86_64__) || defined(__i386__)
 [[gnu::target("avx2")]] void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes<true>(group, material);
+  force_lanes<true, false>(group, material, GeometrySource{});
 }
+namespace {
+[[gnu::target("avx2")]] bool force_lanes_on_coords_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material,
+                                                        const GeometrySource& source) {
+  return force_lanes<true, true>(group, material, source);
+}
+}  // namespace
 #else
 void cps8_force_lanes_avx2(const Cps8LaneGroup& group, const J2PlaneStress& material) {
-  force_lanes<false>(group, material);
+  force_lanes<false, false>(group, material, GeometrySource{});
 }
 #endif
 
@@ -331,6 +372,27 @@ void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material)
     return;
   }
   for (const Cps8Lane& l : group) cps8_force(*l.geo, l.du, l.committed, l.trial, material, *l.out, l.viscous);
+}
+
+}  // namespace ringcrush::fe
+
+namespace ringcrush::fe {
+
+bool cps8_force_lanes_forms_geometry() {
+  static const bool on = cps8_lanes_bitwise_build() && cps8_lanes_avx2_available() && lanes::kDotTreeKnown;
+  return on;
+}
+
+bool cps8_force_lanes_on_coords(const Cps8LaneGroup& group, const Cps8RuleTables& tables,
+                                const std::array<const ElementCoords*, kCps8Lanes>& x_n, double thickness,
+                                const J2PlaneStress& material) {
+#if defined(__x86_64__) || defined(__i386__)
+  if (cps8_force_lanes_forms_geometry())
+    return force_lanes_on_coords_avx2(group, material, GeometrySource{&tables, &x_n, thickness});
+#else
+  (void)group, (void)tables, (void)x_n, (void)thickness, (void)material;
+#endif
+  return false;
 }
 
 }  // namespace ringcrush::fe

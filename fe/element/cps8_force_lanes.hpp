@@ -23,6 +23,7 @@
 #include <array>
 
 #include "fe/element/cps8_element.hpp"
+#include "fe/element/cps8_rule_tables.hpp"
 
 namespace ringcrush::fe {
 
@@ -42,6 +43,24 @@ using Cps8LaneGroup = std::array<Cps8Lane, kCps8Lanes>;
 // cps8_force() on four elements of one integration rule. Throws std::invalid_argument if the
 // lanes mix rules or mix bulk viscosity on and off.
 void cps8_force_lanes(const Cps8LaneGroup& group, const J2PlaneStress& material);
+
+// cps8_force_lanes() on the elements' geometry on x_n formed inside the kernel from their node
+// coordinates x_n (bitwise what Cps8GeometryUpdater::update(x_n, thickness, geo) would store;
+// tables: the updater's, cps8_rule_tables(rule)) instead of read from each lane's geo, whose
+// ∂N/∂x and weights are neither read nor written (its rule, point count and Barlow matrix are
+// used). The explicit step re-derives every element's geometry once per step: formed here it
+// is not stored to the element's 2.6 kB Cps8Geometry and read back (README, session 9).
+// Returns false, having written nothing, when the lanes cannot do it bitwise
+// (!cps8_force_lanes_forms_geometry()) or an element is inverted or degenerate at x_n: the
+// caller then updates the stored geometry (which reports the element) and calls
+// cps8_force_lanes(). Throws std::invalid_argument as cps8_force_lanes(), or if tables is for
+// another rule.
+bool cps8_force_lanes_on_coords(const Cps8LaneGroup& group, const Cps8RuleTables& tables,
+                                const std::array<const ElementCoords*, kCps8Lanes>& x_n, double thickness,
+                                const J2PlaneStress& material);
+// Whether cps8_force_lanes_on_coords() runs on this CPU and build (AVX2, no FMA, an Eigen
+// dot-product tree the lanes reproduce).
+bool cps8_force_lanes_forms_geometry();
 
 // The two compiled copies (tests: both must be bitwise cps8_force()); the AVX2 one only where
 // cps8_lanes_avx2_available().

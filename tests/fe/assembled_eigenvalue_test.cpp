@@ -140,3 +140,52 @@ TEST(AssembledEigenvalue, ChainStepStaysBelowTheTrueLimitAndBeatsTheElementBound
     }
   }
 }
+
+// Two threads (use_threads): the element products are formed on both threads and summed on the
+// caller in element order, so every warm-started estimate is bitwise the one-thread estimate
+// (the explicit run's Δt, hence its whole history, depends on it). 37 elements: an odd count,
+// the helper's half one element longer.
+TEST(AssembledEigenvalue, TwoThreadsGiveTheOneThreadEstimateBitwise) {
+  std::mt19937 gen(17);
+  std::uniform_real_distribution<double> d(-1, 1), m(0.5, 2.0);
+  const int elements = 37, n = 12 * elements + 4;
+  std::vector<std::array<int, 16>> dofs;
+  std::vector<ElementMatrix> k;
+  std::vector<double> scale;
+  Eigen::VectorXd inv_sqrt_mass(n);
+  for (int i = 0; i < n; ++i) inv_sqrt_mass(i) = 1 / std::sqrt(m(gen));
+  for (int e = 0; e < elements; ++e) {
+    std::array<int, 16> dof{};
+    for (int i = 0; i < 16; ++i) dof[i] = 12 * e + i;  // 4 dofs shared with each neighbour
+    ElementMatrix b;
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 16; ++j) b(i, j) = d(gen);
+    dofs.push_back(dof);
+    k.push_back(b * b.transpose());
+    scale.push_back(1.0 + 0.3 * d(gen));
+  }
+  // A penalty spring between nodes 3 and 40 (added after the elements on both paths).
+  ContactContribution spring;
+  spring.count = 2;
+  spring.nodes[0] = 3;
+  spring.nodes[1] = 40;
+  spring.stiffness = 2.5;
+  spring.gap = -0.01;
+  spring.force(1) = spring.stiffness * spring.gap;
+  spring.force(3) = -spring.stiffness * spring.gap;
+  AssembledEigenvalue one(dofs, inv_sqrt_mass), two(dofs, inv_sqrt_mass);
+  ForkJoin fork;
+  two.use_threads(&fork);
+  for (int call = 0; call < 5; ++call) {
+    const AssembledEstimate a = one.estimate(k, scale, 3, 3, 1e-12, {spring});
+    const AssembledEstimate b = two.estimate(k, scale, 3, 3, 1e-12, {spring});
+    EXPECT_EQ(a.lambda, b.lambda);
+    EXPECT_EQ(a.iterations, b.iterations);
+    scale[static_cast<std::size_t>(call)] *= 1.01;  // the element matrices move between calls, as in a run
+  }
+  const AssembledEstimate a = one.estimate(k, scale, 1, 500, 1e-9);
+  const AssembledEstimate b = two.estimate(k, scale, 1, 500, 1e-9);
+  EXPECT_EQ(a.lambda, b.lambda);
+  EXPECT_EQ(a.converged, b.converged);
+  EXPECT_GT(a.iterations, 3);
+}
