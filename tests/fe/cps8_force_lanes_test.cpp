@@ -20,11 +20,7 @@ namespace {
 
 using LaneKernel = void (*)(const Cps8LaneGroup&, const J2PlaneStress&);
 
-struct ElementResult {
-  Cps8Output out;
-  ElementVector viscous = ElementVector::Zero();
-  std::array<PointState, 9> trial{};
-};
+using kernel_test::ElementResult;
 
 // Compares `kernel` with cps8_force() on `count` random elements (groups of 4, then the
 // remainder through cps8_force()); returns {points that yielded, points that stayed elastic}.
@@ -67,18 +63,9 @@ std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool
   std::array<int, 2> branches{0, 0};
   for (int e = 0; e < count; ++e) {
     SCOPED_TRACE(::testing::Message() << "element " << e);
-    EXPECT_EQ(lanes[e].out.force, ref[e].out.force);
-    EXPECT_EQ(lanes[e].viscous, ref[e].viscous);
-    EXPECT_EQ(lanes[e].out.elastic_energy, ref[e].out.elastic_energy);
-    EXPECT_EQ(lanes[e].out.plastic_work, ref[e].out.plastic_work);
+    kernel_test::expect_bitwise_equal(lanes[e], ref[e], geo[e].points);
     for (int i = 0; i < geo[e].points; ++i) {
-      const PointState &a = lanes[e].trial[i], &b = ref[e].trial[i];
-      EXPECT_EQ(a.stress, b.stress);
-      EXPECT_EQ(a.plastic_strain, b.plastic_strain);
-      EXPECT_EQ(a.peeq, b.peeq);
-      EXPECT_EQ(a.plastic_work, b.plastic_work);
-      EXPECT_EQ(a.thickness_stretch, b.thickness_stretch);
-      ++branches[b.peeq > el[e].committed[i].peeq ? 0 : 1];
+      ++branches[ref[e].trial[i].peeq > el[e].committed[i].peeq ? 0 : 1];
     }
   }
   if (viscous) {

@@ -3,7 +3,10 @@
 // of the thesis rings (§3.6.1: 1.6 mm wall, 48 elements per half ring, 202 GPa steel).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -67,6 +70,31 @@ inline RandomElement random_element(std::mt19937& rng, double strain, bool near_
     p.thickness_stretch = 1.0 + 0.01 * u(rng);
   }
   return r;
+}
+
+// One element's kernel results: force, bulk-viscous force, energies and the trial states.
+struct ElementResult {
+  Cps8Output out;
+  ElementVector viscous = ElementVector::Zero();
+  std::array<PointState, 9> trial{};
+};
+
+// The lane kernels must reproduce the scalar kernel bit for bit: every output and every
+// trial-state value of the first `points` points.
+inline void expect_bitwise_equal(const ElementResult& a, const ElementResult& b, int points) {
+  EXPECT_EQ(a.out.force, b.out.force);
+  EXPECT_EQ(a.viscous, b.viscous);
+  EXPECT_EQ(a.out.elastic_energy, b.out.elastic_energy);
+  EXPECT_EQ(a.out.plastic_work, b.out.plastic_work);
+  for (int i = 0; i < points; ++i) {
+    SCOPED_TRACE(::testing::Message() << "point " << i);
+    const PointState &p = a.trial[static_cast<std::size_t>(i)], &q = b.trial[static_cast<std::size_t>(i)];
+    EXPECT_EQ(p.stress, q.stress);
+    EXPECT_EQ(p.plastic_strain, q.plastic_strain);
+    EXPECT_EQ(p.peeq, q.peeq);
+    EXPECT_EQ(p.plastic_work, q.plastic_work);
+    EXPECT_EQ(p.thickness_stretch, q.thickness_stretch);
+  }
 }
 
 }  // namespace ringcrush::fe::kernel_test

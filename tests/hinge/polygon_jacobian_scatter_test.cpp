@@ -52,6 +52,16 @@ Slots slots_of(const std::vector<PolygonChain::Triplet>& triplets) {
   return s;
 }
 
+// The scatter target for `s`'s sequence, writing into `data` (one value per slot).
+PolygonChain::JacobianScatter scatter_into(const Slots& s, std::vector<double>& data) {
+  PolygonChain::JacobianScatter into;
+  into.keys = s.keys.data();
+  into.slots = s.slots.data();
+  into.count = s.keys.size();
+  into.data = data.data();
+  return into;
+}
+
 // The state of a short two-ring impact at `end` (rings in contact with the impactor, the
 // target and each other, hinges flowing).
 std::vector<double> state_at(const PolygonChainInput& in, double end) {
@@ -83,11 +93,7 @@ TEST(PolygonJacobianScatter, EqualsTripletAssemblyEntryByEntry) {
     std::vector<double> y = y0;
     for (std::size_t i = 0; i < y.size(); ++i) y[i] += dt * 1e-3 * std::sin(static_cast<double>(i));
     std::vector<double> data(s.entries.size(), 0.0);
-    PolygonChain::JacobianScatter into;
-    into.keys = s.keys.data();
-    into.slots = s.slots.data();
-    into.count = s.keys.size();
-    into.data = data.data();
+    PolygonChain::JacobianScatter into = scatter_into(s, data);
     const bool matched = chain.analytic_jacobian_scatter(6e-4, cj, y.data(), into);
     std::vector<PolygonChain::Triplet> reference;
     chain.analytic_jacobian(6e-4, cj, y.data(), reference);
@@ -116,11 +122,7 @@ TEST(PolygonJacobianScatter, ChangedSequenceIsDetected) {
   chain.analytic_jacobian(4e-4, 1e5, y.data(), triplets);
   Slots s = slots_of(triplets);
   std::vector<double> data(s.entries.size(), 0.0);
-  PolygonChain::JacobianScatter into;
-  into.keys = s.keys.data();
-  into.slots = s.slots.data();
-  into.count = s.keys.size();
-  into.data = data.data();
+  PolygonChain::JacobianScatter into = scatter_into(s, data);
   EXPECT_TRUE(chain.analytic_jacobian_scatter(4e-4, 1e5, y.data(), into));
   s.keys[s.keys.size() / 2] += std::int64_t{1} << 32;  // the same column, the next row
   into.keys = s.keys.data();
