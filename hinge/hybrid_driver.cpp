@@ -48,6 +48,8 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   // IDACalcIC needs a first output time for its scale: one hundredth of the run.
   const double ic_horizon = 1e-2 * (o.end_time - t0);
   auto restart = [&](double t, const std::vector<double>& state, const std::vector<int>& fired) {
+    if (o.ida_restart_step_fraction.value_or(0.0) > 0.0 && !fired.empty())
+      ida.set_initial_step(*o.ida_restart_step_fraction * ida.last_step());
     std::vector<double> deriv(n);
     system.rhs(t, state.data(), deriv.data());
     ida.reinit(t, state, deriv, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
@@ -151,6 +153,8 @@ HybridOutcome run_hybrid(HybridSystem& system, double t0, std::vector<double>& y
                          const HybridOptions& options, const HybridSampler& sample) {
   if (y.size() != system.size()) throw std::invalid_argument("run_hybrid: state size does not match the system");
   if (!(options.end_time > t0)) throw std::invalid_argument("run_hybrid: end time must follow the start");
+  if (const double f = options.ida_restart_step_fraction.value_or(0.0); !(f >= 0.0 && f <= 1.0))
+    throw std::invalid_argument(fmt::format("run_hybrid: ida_restart_step_fraction = {} (need 0 (off) to 1)", f));
   return options.integrator == HybridIntegrator::Ida ? run_ida(system, t0, y, options, sample)
                                                      : run_odeint(system, t0, y, options, sample);
 }

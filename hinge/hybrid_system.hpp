@@ -12,6 +12,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,11 @@ struct HybridOptions {
   double absolute_tolerance = 1e-10;
   double end_time = 1.0;
   double initial_step = 1e-7;    // Odeint; IDA chooses its own
+  // IDA's first step after an event: a fraction in (0, 1] of its last step before it (Odeint
+  // always restarts from its last step); 0, IDA's own first step (0.5/‖y′‖ in its error
+  // weights: ~1e-11 s at rtol 1e-8, then ~20 doublings back); unset, the model's choice (the
+  // driver: 0). For models with many events (Level 3 with ring inertia sets 0.1).
+  std::optional<double> ida_restart_step_fraction;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -240,6 +241,18 @@ void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector
 
 void IdaSolver::set_stop_time(double t_stop) {
   impl_->check(IDASetStopTime(impl_->ida, t_stop), "IDASetStopTime");
+}
+
+void IdaSolver::set_initial_step(double h) {
+  if (!(h >= 0.0) || !std::isfinite(h))
+    throw std::invalid_argument(fmt::format("IdaSolver::set_initial_step: h = {} (need finite, >= 0)", h));
+  impl_->check(IDASetInitStep(impl_->ida, h), "IDASetInitStep");
+}
+
+double IdaSolver::last_step() const {
+  realtype h = 0.0;
+  impl_->check(IDAGetLastStep(impl_->ida, &h), "IDAGetLastStep");
+  return h;
 }
 
 void IdaSolver::set_root_direction(const std::vector<int>& direction) {

@@ -80,6 +80,11 @@ class IdaSolver {
   const std::vector<int>& root_mask() const;
 
   void set_stop_time(double t_stop);
+  // The first step IDA tries after the next (re)start (IDASetInitStep; 0: IDA's own estimate,
+  // 0.001 of the way to tout cut to 0.5/‖y′‖, which at tight tolerances is ~1e-11 s).
+  void set_initial_step(double h);
+  // The size of the last successful step (IDAGetLastStep; 0 before the first).
+  double last_step() const;
   // +1 only rising, −1 only falling, 0 both (IDASetRootDirection).
   void set_root_direction(const std::vector<int>& direction);
 

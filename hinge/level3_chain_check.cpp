@@ -1,7 +1,9 @@
 // Level 3 chain: the statics check and the travelling E evaluated on the output states.
 //
-// The chain is massless (hinge/level3_mechanism.hpp), so every ring carries the impactor
-// force F; at each output state each ring's shape is checked for |M| ≤ M_p under F
+// The massless chain (hinge/level3_mechanism.hpp): every ring carries the impactor force F;
+// with ring inertia (hinge/level3_inertia.cpp) each ring its own top and bottom forces and
+// its d'Alembert load (Level3RingLoads). At each output state each ring's shape is checked
+// for |M| ≤ M_p under them
 // (level3_statics_check; M_p the hinge moment of the ring's mechanism, M0 with k = 0), and every ring under a wrap gets its held cap (from the wrapping
 // ring's shape stacked on it), its E (fixed or shear-free) and the E–C–B load, held against
 // the load of the bottom mechanism it flows in (THEORY §4.5: mode selection by the
@@ -24,7 +26,8 @@ double bottom_load(const Level3Ring& r, double psi) {
 }  // namespace
 
 void level3_check_states(const Level3Input& in, const WrapMechanism& w, const std::vector<Level3RingResult>& states,
-                         double force_n, double time_s, std::vector<Level3RingResult>& rings) {
+                         double force_n, double time_s, std::vector<Level3RingResult>& rings,
+                         const std::vector<Level3RingLoads>& loads) {
   const double M0 = in.ring.plastic_moment_nm, t = in.ring.wall_thickness_m;
   std::vector<Level3Shape> shapes;
   double top = 0.0;
@@ -47,7 +50,10 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
     const double hard = si.mode == Level3Mode::Wrap ? 1.0
                         : si.reinforced             ? 1.0 + in.ring.hardening_k * si.bottom_angle
                                                     : 1.0 + in.ring.hardening_k * si.uniform_angle;
-    const auto st = level3_statics_check(shapes[i], load, M0 * hard);
+    // With inertia each ring under its own contact forces and d'Alembert loads (the same
+    // meaning: the largest |M|/M_p of the best field outside the hinges).
+    const auto st = loads.empty() ? level3_statics_check(shapes[i], load, M0 * hard)
+                                  : level3_statics_check(shapes[i], loads[i], M0 * hard);
     if (st.peak_ratio > rr.peak_moment_ratio) {
       rr.peak_moment_ratio = st.peak_ratio;
       rr.peak_moment_angle_deg = st.angle_deg;
@@ -75,6 +81,30 @@ void level3_check_states(const Level3Input& in, const WrapMechanism& w, const st
       ++rr.e_cheaper_states;
     }
   }
+}
+
+void level3_check_history(const Level3Input& in, Level3Result& res) {
+  // Statics check and E on the output states (first and last only without a history): at
+  // most ~200 evenly spread, plus every state where a ring changes mechanism (the events,
+  // where the loads jump), plus the last — a check costs ≈ 0.2 ms, the runs keep thousands.
+  const auto& h = res.history;
+  const bool own = !h.ring_loads.empty();  // with inertia: each ring's own loads
+  const std::size_t ns = h.time_s.size(), stride = std::max<std::size_t>(1, ns / 200);
+  auto changed = [&](std::size_t k) {
+    if (k == 0) return true;
+    for (std::size_t i = 0; i < h.ring_state[k].size(); ++i) {
+      const auto &a = h.ring_state[k][i], &b = h.ring_state[k - 1][i];
+      if (a.wrap_started != b.wrap_started || a.reinforced != b.reinforced || a.ecb_started != b.ecb_started) return true;
+    }
+    return false;
+  };
+  for (std::size_t k = 0; k < ns; ++k)
+    if (k % stride == 0 || k + 1 == ns || changed(k))
+      level3_check_states(in, res.wrap, h.ring_state[k], h.force_n[k], h.time_s[k], res.rings,
+                          own ? h.ring_loads[k] : std::vector<Level3RingLoads>{});
+  for (auto& rr : res.rings)
+    for (auto& hg : rr.hinges)
+      if (hg.name == "E" && !rr.ecb_started) hg.angle_deg = rr.theta_e * 180.0 / std::numbers::pi;
 }
 
 }  // namespace ringcrush::hinge

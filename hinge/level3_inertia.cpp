@@ -26,9 +26,10 @@
 // another admissible mechanism of its own becomes cheaper than the current one (e.g. the
 // wrap, whose load falls, against the hardening uniform mechanism). The wrap of ring i
 // reinforces ring i + 1 (Bottom, or E–C–B when cheaper by the massless chain's margin).
-// The massless chain's lower-bound statics check (hinge/level3_statics.hpp) assumes one
-// force through each ring in equilibrium; with inertia the ring's two contact forces differ,
-// so it is not run here (the moment ratios stay 0).
+// The lower-bound statics check (hinge/level3_statics.hpp) runs on each ring under its own
+// two contact forces — the force from above F_i, from below F_i − m_r ẅ_i — and the
+// d'Alembert load of its mass (the centre's ẅ_i and, in the Uniform mode, the DeRuntz–Hodge
+// relative motion whose kinetic energy is J(φ)): Level3RingLoads, recorded per output state.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -37,6 +38,7 @@
 
 #include "chain_1d.hpp"
 #include "level3_chain.hpp"
+#include "level3_statics.hpp"
 #include "mass_lcp.hpp"
 
 namespace ringcrush::hinge {
@@ -59,6 +61,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     law_.mass_kg = in.ring_mass_kg;
     motion_.assign(n_, RingMotion::Rigid);
     mech_.assign(n_, 0);
+    own_cache_.assign(static_cast<std::size_t>(n_), OwnMass{});
     for (int i = 0; i < n_; ++i) {
       mech_[i] = kM * i + kU;
       strength_.push_back(1.0 + tie_break * i);
@@ -103,13 +106,24 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   }
   bool uniform_inertia(int i) const { return mech_[i] % kM == kU && !wrap_started_[i] && !reinforced_[i]; }
   // μ_i = J(φ)/(d cos φ)² and dμ/dδ in the Uniform mode (δ = d sin φ), 0 otherwise.
+  // Kept per ring for the last uniform crush it was evaluated at: the trigonometry of J(φ)
+  // was a quarter of a run's instructions, and most calls (the rigid rings, IDA's difference
+  // quotients in another column, the root functions at a step's end) repeat a crush.
   void own_mass(const double* y, int i, double& mu, double& dmu) const {
     mu = dmu = 0.0;
     if (!uniform_inertia(i) || in_.ring_mass_kg == 0.0) return;
+    auto& c0 = own_cache_[static_cast<std::size_t>(i)];
+    const double crush = y[state(kM * i + kU)];
+    if (crush == c0.crush) {
+      mu = c0.mu;
+      dmu = c0.dmu;
+      return;
+    }
     const double phi = uniform_phi(y, i), c = std::cos(phi), s = std::sin(phi), dc = d_ * c;
     const double J = law_.inertia(phi), Jp = law_.inertia_derivative(phi);
     mu = J / (dc * dc);
     dmu = (Jp / (dc * dc) + 2.0 * J * s / (dc * dc * c)) / dc;
+    c0 = {crush, mu, dmu};
   }
   void assemble(const double* y) {
     mm_ = m0_;
@@ -162,6 +176,37 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   void residual(double t, const double* y, const double* yp, double* r) override {
     rhs(t, y, r);
     for (std::size_t k = 0; k < size(); ++k) r[k] = yp[k] - r[k];
+  }
+
+  // IDA's Jacobian ∂F/∂y + cj ∂F/∂y′ = cj I − ∂f/∂y. Difference quotients as IDA's own, but
+  // only in the columns f depends on: the impactor velocity (f₀ = y₁) and, per crushing ring,
+  // its crush rate and its mechanism's crush (its load, and μ(δ) in the Uniform mode). A
+  // rigid or locked ring's crush moves only its own reaction (λ_i, f₃ through λ_i δ̇_i = 0),
+  // so IDA's 28 residuals per Jacobian (a third of the run) become 1 + 2 × (rings crushing).
+  bool has_jacobian() const override { return true; }
+  void jacobian(double t, double cj, const double* y, const double* yp, JacobianSink& jac) override {
+    const std::size_t n = size();
+    for (std::size_t k = 0; k < n; ++k) jac.set(k, k, cj);
+    jac.set(0, 1, -1.0);
+    f0_.resize(n);
+    f1_.resize(n);
+    yd_.assign(y, y + n);
+    rhs(t, y, f0_.data());
+    auto column = [&](int c, double typical) {
+      const auto k = static_cast<std::size_t>(c);
+      const double inc = std::sqrt(std::numeric_limits<double>::epsilon()) *
+                         std::max({std::abs(y[k]), std::abs(yp[k]) / std::max(cj, 1e-300), typical});
+      yd_[k] = y[k] + inc;
+      rhs(t, yd_.data(), f1_.data());
+      yd_[k] = y[k];
+      for (std::size_t r = 0; r < n; ++r)
+        if (r != k || f1_[r] != f0_[r]) jac.set(r, k, (r == k ? cj : 0.0) - (f1_[r] - f0_[r]) / inc);
+    };
+    for (int i = 0; i < n_; ++i) {
+      if (motion_[i] != RingMotion::Crushing) continue;
+      column(vel(i), 1e-3 * vref_);
+      column(state(mech_[i]), 1e-6 * d_);
+    }
   }
 
   // Roots. Slot j = kM·i + k of ring i: crushing in j, its travel left (limit); crushing in
@@ -409,6 +454,35 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     h.impact_loss_j.push_back(impact_loss_);
     h.ring_force_n.resize(static_cast<std::size_t>(n_));
     for (int i = 0; i < n_; ++i) h.ring_force_n[static_cast<std::size_t>(i)].push_back(lambda_(i));
+    h.ring_loads.push_back(ring_loads(y.data()));
+  }
+
+  // Each ring's contact forces and accelerations (after accelerations()): ring 1 takes the
+  // impactor's −M ü₀ from above, ring i + 1 the force ring i passes on (massless joints),
+  // each passing on what its own mass does not take, F_i − m_r ẅ_i, ẅ_i = ½ δ̈_i + Σ_{j>i} δ̈_j.
+  std::vector<Level3RingLoads> ring_loads(const double* y) const {
+    std::vector<Level3RingLoads> out(static_cast<std::size_t>(n_));
+    double top = -in_.impactor_mass_kg * qdd_.sum(), below = qdd_.sum();
+    for (int i = 0; i < n_; ++i) {
+      auto& L = out[static_cast<std::size_t>(i)];
+      below -= qdd_(i);  // Σ_{j>i} δ̈_j
+      L.mass_kg = in_.ring_mass_kg;
+      L.centre_accel_m_s2 = 0.5 * qdd_(i) + below;
+      L.top_n = top;
+      L.bottom_n = top - L.mass_kg * L.centre_accel_m_s2;
+      top = L.bottom_n;
+      L.radius_m = R_;
+      double mu, dmu;
+      own_mass(y, i, mu, dmu);
+      if (mu > 0.0) {  // the Uniform mode's own motion, in φ (δ = d sin φ)
+        const double phi = uniform_phi(y, i), dc = d_ * std::cos(phi), v = y[vel(i)];
+        L.uniform_motion = true;
+        L.phi = phi;
+        L.phi_rate = v / dc;
+        L.phi_accel = (qdd_(i) + d_ * std::sin(phi) * L.phi_rate * L.phi_rate) / dc;
+      }
+    }
+    return out;
   }
 
   double impact_loss() const { return impact_loss_; }
@@ -419,12 +493,19 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   std::vector<RingMotion> motion_;
   std::vector<int> mech_;  // ring i's current mechanism slot (kM·i + mode)
   std::vector<double> strength_;
+  struct OwnMass {
+    double crush = std::numeric_limits<double>::quiet_NaN(), mu = 0.0, dmu = 0.0;
+  };
+  mutable std::vector<OwnMass> own_cache_;
+  std::vector<double> f0_, f1_, yd_;  // jacobian(): f(y), f(y + inc e_k), the shifted state
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m0_, mm_;
   Eigen::VectorXd b_, r_, qdd_, lambda_;
   FreeMassSolve free_solve_;
   std::vector<Eigen::Index> free_;
 };
+
+constexpr double kIdaRestartStepFraction = 0.1;
 
 }  // namespace
 
@@ -434,13 +515,18 @@ Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions
   Level3Result res;
   res.wrap = level3_detail::level3_wrap_for(in);
   res.theta_f = res.wrap.theta_f;
+  // IDA restarts from a tenth of its last step: 30–60 events a run, each otherwise starting
+  // from IDA's own ~1e-11 s (hybrid_system.hpp); 1243 → 1106 steps at 27.7 m/s (0.01: 1159,
+  // 0.3: 1105 with more rejections, 1: 1137). Order 1 after a restart still needs ~1e-8 s.
+  HybridOptions opt = options;
+  if (!opt.ida_restart_step_fraction) opt.ida_restart_step_fraction = kIdaRestartStepFraction;
   Level3InertialChain chain(in, res.wrap);
   res.initial_kinetic_energy_j = 0.5 * in.impactor_mass_kg * in.impactor_velocity_m_s * in.impactor_velocity_m_s;
   std::vector<double> y = chain.initial_state();
   std::vector<double> last;
   double t_last = 0.0;
   if (chain.moving()) {
-    res.outcome = run_hybrid(chain, 0.0, y, options, [&](double t, const std::vector<double>& s) {
+    res.outcome = run_hybrid(chain, 0.0, y, opt, [&](double t, const std::vector<double>& s) {
       if (record_history || res.history.time_s.empty()) chain.record_state(t, s, res.history);
       last = s;
       t_last = t;
@@ -451,6 +537,7 @@ Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions
   }
   chain.finish(y, res);
   res.impact_loss_j = chain.impact_loss();
+  level3_check_history(in, res);
   return res;
 }
 

@@ -278,25 +278,7 @@ Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options
   if (!running) chain.record(0.0, y, res.history);
   else if (!record_history && !last.empty()) chain.record(t_last, last, res.history);
   chain.finish(y, res);
-  // Statics check and E on the output states (first and last only without a history): at
-  // most ~200 evenly spread, plus every state where a ring changes mechanism (the events,
-  // where the loads jump), plus the last — a check costs ≈ 0.2 ms, the runs keep thousands.
-  const auto& h = res.history;
-  const std::size_t ns = h.time_s.size(), stride = std::max<std::size_t>(1, ns / 200);
-  auto changed = [&](std::size_t k) {
-    if (k == 0) return true;
-    for (std::size_t i = 0; i < h.ring_state[k].size(); ++i) {
-      const auto &a = h.ring_state[k][i], &b = h.ring_state[k - 1][i];
-      if (a.wrap_started != b.wrap_started || a.reinforced != b.reinforced || a.ecb_started != b.ecb_started) return true;
-    }
-    return false;
-  };
-  for (std::size_t k = 0; k < ns; ++k)
-    if (k % stride == 0 || k + 1 == ns || changed(k))
-      level3_check_states(in, res.wrap, h.ring_state[k], h.force_n[k], h.time_s[k], res.rings);
-  for (auto& rr : res.rings)
-    for (auto& hg : rr.hinges)
-      if (hg.name == "E" && !rr.ecb_started) hg.angle_deg = rr.theta_e * 180.0 / pi;
+  level3_check_history(in, res);
   return res;
 }
 

@@ -190,6 +190,22 @@ struct Level3RingResult {
   double held_cap_onset = 0.0, theta_e_onset = 0.0, e_onset_load_n = 0.0, bottom_onset_load_n = 0.0;
 };
 
+// A ring with inertia (hinge/level3_inertia.cpp) carries different contact forces at top and
+// bottom; the difference accelerates its mass (d'Alembert). Its loads for the statics check
+// (hinge/level3_statics.hpp), one per ring and output state:
+struct Level3RingLoads {
+  double top_n = 0.0;         // contact force from above, pushing the ring toward the target (N)
+  double bottom_n = 0.0;      // contact force from below, pushing it back (N)
+  double mass_kg = 0.0;       // m_r, spread evenly along the mean line
+  double centre_accel_m_s2 = 0.0;  // ẅ of the ring's centre toward the target: top − bottom = m_r ẅ
+  // The DeRuntz–Hodge relative motion (the Uniform mode's own inertia J(φ), THEORY §1.3):
+  // quadrant angle φ, its rate and acceleration; false in the modes whose own inertia the
+  // chain neglects (Wrap, Bottom, E–C–B: only the centre translates).
+  bool uniform_motion = false;
+  double phi = 0.0, phi_rate = 0.0, phi_accel = 0.0;
+  double radius_m = 0.0;  // mean radius R (the relative motion's lever)
+};
+
 struct Level3History {
   std::vector<double> time_s, impactor_displacement_m, impactor_velocity_m_s, force_n;
   std::vector<std::vector<double>> ring_crush_m;  // [ring][sample]
@@ -198,6 +214,7 @@ struct Level3History {
   // far, and the force carried by each ring [ring][sample] (compression > 0).
   std::vector<double> impact_loss_j;
   std::vector<std::vector<double>> ring_force_n;
+  std::vector<std::vector<Level3RingLoads>> ring_loads;  // [sample][ring] (inertia only)
   // [sample][ring] the mechanism state of each ring (crushes, angles, curvature, mode; no
   // hinge list or work), enough for level3_ring_shape: the shapes over time.
   std::vector<std::vector<Level3RingResult>> ring_state;

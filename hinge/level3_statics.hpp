@@ -51,10 +51,33 @@ struct Level3Statics {
 // shape with fewer than 3 points, a non-increasing θ, or a negative / non-finite load.
 Level3Statics level3_statics_check(const Level3Shape& shape, double load_n, double plastic_moment_nm);
 
+// Acceleration {x, y} of the material point at angle θ ∈ [0, π] from the top in the
+// DeRuntz–Hodge mechanism, in the frame of the ring's centre (THEORY §1.3: flat of material
+// length Rφ, arcs rolling about the travelling hinges; the lower half mirrors the upper).
+std::array<double, 2> level3_uniform_relative_accel(double radius_m, double theta, double phi, double phi_rate,
+                                                    double phi_accel);
+
+// The check under a ring's own loads: top_n/2 down at the top contact edge, bottom_n/2 up at
+// the bottom one, and on every shape point the d'Alembert load −m a of its share of the half
+// ring's mass (θ-spacing, m_r/2π per radian), a = the centre's acceleration plus the
+// DeRuntz–Hodge relative one. With mass 0 and top = bottom = P it is level3_statics_check
+// (shape, P, M0). Throws std::invalid_argument on a non-finite force, acceleration or rate, a
+// negative mass, a relative motion without a radius, and on loads out of balance
+// (|top − bottom − m_r ẅ| > 1e-9 of the largest).
+Level3Statics level3_statics_check(const Level3Shape& shape, const Level3RingLoads& loads, double plastic_moment_nm);
+
 // One output state of the chain (hinge/level3_chain_check.cpp): every ring's statics check
 // under the chain force (the largest ratio kept in `rings` with its angle and time) and, for
 // a ring under a wrap, the held cap, E and the E–C–B load against the bottom mechanism's.
+// With ring inertia, `loads` holds each ring's own loads (one per state; force_n unused);
+// empty: every ring under force_n.
 void level3_check_states(const Level3Input& in, const WrapMechanism& w, const std::vector<Level3RingResult>& states,
-                         double force_n, double time_s, std::vector<Level3RingResult>& rings);
+                         double force_n, double time_s, std::vector<Level3RingResult>& rings,
+                         const std::vector<Level3RingLoads>& loads = {});
+
+// The checks over a run (simulate_level3 and simulate_level3_inertial): at most ~200 evenly
+// spread output states, every mechanism change and the last; the E of a ring that did not
+// turn it reported at its checked angle.
+void level3_check_history(const Level3Input& in, Level3Result& res);
 
 }  // namespace ringcrush::hinge

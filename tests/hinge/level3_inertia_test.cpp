@@ -137,3 +137,32 @@ TEST(Level3Inertia, IdaAndOdeintAgree) {
   }
   EXPECT_TRUE(ida.rings[0].wrap_started);  // ring 1 reaches the wrap onset first at 50 m/s
 }
+
+// Speed without changing results (issue 7 item 2): the chain restarts IDA from a tenth of its
+// last step and gives IDA its Jacobian in the columns f depends on. Against IDA's own first
+// step (fraction 0) and, through the same model, Odeint: final crush per ring to 1e-6 d, the
+// same modes, energy to 1e-6, and fewer steps (counted, not timed). A fraction outside
+// [0, 1] is a named error.
+TEST(Level3Inertia, IdaRestartStepKeepsTheResult) {
+  const auto in = test30_level3(50.0, false);
+  auto own = hinge::testing::tight(HybridIntegrator::Ida);
+  own.ida_restart_step_fraction = 0.0;
+  const auto ref = simulate_level3(in, own);
+  const auto fast = simulate_level3(in, hinge::testing::tight(HybridIntegrator::Ida));
+  const double d = in.ring.mean_diameter();
+  ASSERT_EQ(ref.rings.size(), fast.rings.size());
+  for (std::size_t i = 0; i < ref.rings.size(); ++i) {
+    EXPECT_NEAR(fast.rings[i].crush_m / d, ref.rings[i].crush_m / d, 1e-6) << "ring " << i + 1;
+    EXPECT_EQ(fast.rings[i].mode, ref.rings[i].mode) << "ring " << i + 1;
+  }
+  EXPECT_LE(fast.energy_balance_error(), 1e-6);
+  EXPECT_LT(fast.outcome.statistics.steps, ref.outcome.statistics.steps);
+  auto bad = own;
+  bad.ida_restart_step_fraction = 2.0;
+  try {
+    simulate_level3(in, bad);
+    ADD_FAILURE() << "accepted ida_restart_step_fraction = 2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("ida_restart_step_fraction = 2"), std::string::npos) << e.what();
+  }
+}
