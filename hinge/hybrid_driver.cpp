@@ -105,6 +105,7 @@ HybridOutcome run_odeint(HybridSystem& system, double t0, std::vector<double>& y
   ev.root_count = system.root_count();
   ev.roots = [&](double t, const std::vector<double>& x, double* g) { system.event_roots(t, x.data(), g); };
   ev.mask_tolerance = o.root_mask_tolerance;
+  ev.time_tolerance = o.odeint_event_time_tolerance.value_or(0.0);
 
   HybridOutcome out;
   OdeintStatistics stats;
@@ -155,6 +156,8 @@ HybridOutcome run_hybrid(HybridSystem& system, double t0, std::vector<double>& y
   if (!(options.end_time > t0)) throw std::invalid_argument("run_hybrid: end time must follow the start");
   if (const double f = options.ida_restart_step_fraction.value_or(0.0); !(f >= 0.0 && f <= 1.0))
     throw std::invalid_argument(fmt::format("run_hybrid: ida_restart_step_fraction = {} (need 0 (off) to 1)", f));
+  if (const double w = options.odeint_event_time_tolerance.value_or(0.0); !(w >= 0.0 && std::isfinite(w)))
+    throw std::invalid_argument(fmt::format("run_hybrid: odeint_event_time_tolerance = {} s (need finite, >= 0)", w));
   return options.integrator == HybridIntegrator::Ida ? run_ida(system, t0, y, options, sample)
                                                      : run_odeint(system, t0, y, options, sample);
 }

@@ -62,6 +62,9 @@ struct HybridOptions {
   // weights: ~1e-11 s at rtol 1e-8, then ~20 doublings back); unset, the model's choice (the
   // driver: 0). For models with many events (Level 3 with ring inertia sets 0.1).
   std::optional<double> ida_restart_step_fraction;
+  // Odeint's event bisection stops at this width (s); unset, the model's choice (the driver:
+  // 64 ulp of t, ~45 halvings of a step, each evaluating every root function).
+  std::optional<double> odeint_event_time_tolerance;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;
