@@ -177,7 +177,8 @@ struct Level3RingResult {
   std::vector<Level3Hinge> hinges;
   double plastic_work_j = 0.0;
   // Statics check (hinge/level3_statics.hpp) over the output states: the largest lower-bound
-  // ratio max|M|/M_p under the chain force, where and when (ratio > 1: another hinge needed);
+  // ratio max|M|/M_p under the chain force (with ring inertia: the ring's own contact forces
+  // and d'Alembert load, Level3RingLoads), where and when (ratio > 1: another hinge needed);
   // M_p = M0 times the flowing mechanism's Redwood factor (1 + kφ, 1 + kψ; 1 for the wrap).
   double peak_moment_ratio = 0.0, peak_moment_angle_deg = 0.0, peak_moment_time_s = 0.0;
   std::vector<double> peak_moment_angles_deg;  // every place the field reaches that peak
