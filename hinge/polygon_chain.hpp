@@ -221,7 +221,14 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // k(1 + χṗ)), and the damping ratio ξ of the Kelvin–Voigt, contact and mass damping rows
   // the same way; dt = min over nodes and bodies of (2/ω)(√(1 + ξ²) − ξ) (Belytschko et al.,
   // Nonlinear FE, §6.3), without safety factor.
-  double stable_step() const;
+  double stable_step() const { return stable_step(kAllStiffness); }
+  // The same bound with only the stiffness terms in `terms` (StepTerm bits; the damping rows
+  // always): which term sets the step (polygon_stiffness_spectrum.hpp, stable_step_breakdown).
+  enum StepTerm : unsigned { kMembrane = 1, kHinges = 2, kTies = 4, kContacts = 8, kAllStiffness = 15 };
+  double stable_step(unsigned terms) const;
+  // K = −∂φ/∂y of the force laws without the Kelvin–Voigt dampers (analytic_jacobian with
+  // c_b = c_θ = 0, cj = 0; polygon_stiffness_spectrum.cpp): the stiffness the step is bound by.
+  void stiffness_triplets(double t, const double* y, std::vector<Triplet>& out);
   // Kelvin–Voigt ring dampers applied implicitly by the central-difference driver
   // (polygon_implicit_dampers.cpp). While set, rhs_with_flow_update leaves the bar and hinge
   // dampers out of φ (and out of the damping power) and stable_step leaves them out of ξ;

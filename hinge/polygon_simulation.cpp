@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "odeint_integrator.hpp"
@@ -89,10 +90,17 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
   bool go = recorder.sample(0.0, y.data());
 
   // IDA and the central difference both advance to each output time and are sampled there.
+  std::optional<PolygonStiffnessSpectrum> spectrum;
+  if (options.step_breakdown) spectrum.emplace(chain);
+  const auto breakdown = [&](double t, const double* state) {
+    if (spectrum) out.step_breakdown.emplace_back(t, stable_step_breakdown(chain, *spectrum, t, state));
+  };
+  breakdown(0.0, y.data());
   const auto march = [&](auto& stepper) {
     for (long k = 1; go; ++k) {
       const double t = stepper.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
       go = recorder.sample(t, stepper.y().data()) && t < options.end_time_s;
+      breakdown(t, stepper.y().data());
     }
     y = stepper.y();
   };
