@@ -17,9 +17,11 @@
 // above and moves toward −y.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -247,6 +249,14 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void ring_damper_step(const double* y, double h, double* v, double* d);
   double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
 
+  // Contact landing (polygon_contact_landing.cpp; CentralDifferenceOptions::
+  // contact_landing_depth): while depth > 0, every evaluation notes, over the node–plate and
+  // node–segment pairs within reach (gap ≤ t) that close faster than `min_speed`, the
+  // shortest time (gap + depth)/ṗ in which one of them would reach the penetration `depth`
+  // (contact_landing_step, ∞ when none). 0 (the default) notes nothing.
+  void set_contact_landing(double depth, double min_speed);
+  double contact_landing_step() const { return landing_step_; }
+
  private:
   struct Body {
     double half_thickness;  // contact faces at y ± h
@@ -372,6 +382,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
+  double landing_depth_ = 0.0, landing_speed_ = 0.0;
+  double landing_step_ = std::numeric_limits<double>::infinity();
+  void note_landing(double gap, double rate) {
+    if (rate > landing_speed_) landing_step_ = std::min(landing_step_, (gap + landing_depth_) / rate);
+  }
   // Implicit ring dampers (polygon_implicit_dampers.cpp): C of one ring in a profile
   // (skyline) lower triangle over its 2 n_ind velocity rows, row i spanning columns
   // kv_first_[i]…i from kv_start_[i]; kv_factor_ the Cholesky factor of μ + h C.

@@ -136,6 +136,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     co.safety = options.central_difference_safety;
     co.max_step_s = options.max_step_s;
     co.implicit_ring_dampers = options.central_difference_implicit_dampers;
+    co.power_iteration_bound = options.central_difference_power_bound;
+    co.contact_landing_depth = options.central_difference_landing_depth_m;
     PolygonCentralDifference cd(chain, 0.0, y, co);
     march(cd);
     const auto& s = cd.statistics();
@@ -144,6 +146,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.min_step_s = s.min_step_s;
     out.max_step_s = s.max_step_s;
     out.min_flow_relaxation_s = s.min_flow_relaxation_s;
+    out.power_refreshes = s.power_refreshes;
+    out.landing_steps = s.landing_steps;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

@@ -6,6 +6,7 @@
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
 //       [--dampers implicit|explicit] [--step-breakdown]
+//       [--step-bound gershgorin|power] [--landing 0.002]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -57,6 +58,8 @@ struct BenchOptions {
   std::optional<double> pattern_slack;
   std::string dampers = "implicit";
   bool step_breakdown = false;
+  std::string step_bound = "gershgorin";
+  std::optional<double> landing;
 };
 
 // Quantiles of the step-bound breakdown over the run's samples (stable_step_breakdown,
@@ -104,6 +107,13 @@ void bench(const BenchOptions& o) {
     throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
   settings.central_difference_implicit_dampers = o.dampers == "implicit";
   settings.step_breakdown = o.step_breakdown;
+  if (o.step_bound != "gershgorin" && o.step_bound != "power")
+    throw std::invalid_argument("--step-bound must be gershgorin or power, not \"" + o.step_bound + "\"");
+  settings.central_difference_power_bound = o.step_bound == "power";
+  if (o.landing) {
+    if (!(*o.landing >= 0.0)) throw std::invalid_argument("--landing must be ≥ 0");
+    settings.central_difference_landing_depth_ratio = *o.landing;
+  }
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -125,9 +135,11 @@ void bench(const BenchOptions& o) {
                last.raw.jacobian_formations, last.raw.pattern_rebuilds, last.raw.pattern_remaps,
                last.raw.rejected_steps, last.raw.nonlinear_iterations);
   if (opt.integrator == HingeIntegrator::CentralDifference)
-    fmt::print("central difference: {} dampers, safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
-               "relaxation time {:.3g} s\n",
-               o.dampers, settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
+    fmt::print("central difference: {} dampers, {} step bound ({} estimates), landing {:g} t ({} steps), safety {:g}, "
+               "steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow relaxation time {:.3g} s\n",
+               o.dampers, o.step_bound, last.raw.power_refreshes, settings.central_difference_landing_depth_ratio,
+               last.raw.landing_steps, settings.central_difference_safety,
+               last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
   print_step_breakdown(last.raw.step_breakdown);
   const auto alt = alternation(last.result.crush_ratio);
@@ -151,6 +163,10 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--pattern-slack", o->pattern_slack, "ida: fraction of stale zero entries kept in the pattern, [0, 1)");
   cmd->add_option("--dampers", o->dampers,
                   "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
+  cmd->add_option("--step-bound", o->step_bound,
+                  "central_difference: gershgorin (default) | power (power-iteration estimate of omega_max)");
+  cmd->add_option("--landing", o->landing,
+                  "central_difference: contact landing depth as a fraction of t (0: off, the default)");
   cmd->add_flag("--step-breakdown", o->step_breakdown,
                "at every output sample: the stable-step bound with each stiffness term left out, and the "
                "power-iteration 2/omega_max (diagnostic)");
