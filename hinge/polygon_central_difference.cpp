@@ -65,14 +65,14 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
 }
 
 void PolygonCentralDifference::update_stable_step() {
-  const double bound = chain_.stable_step();  // the contact rows of the last evaluation
+  // Both from the step's evaluation (the estimate below evaluates the chain anew).
+  const double bound = chain_.stable_step(), landing = chain_.contact_landing_step();
   if (spectrum_) {
     ++power_age_;
     const bool due = power_age_ >= options_.power_refresh_steps ||
                      (power_age_ >= options_.power_min_refresh_steps &&
                       std::abs(bound - power_reference_) > options_.power_refresh_change * power_reference_);
     if (power_reference_ == 0.0 || due) {
-      // Evaluates the chain at y_ (after the bound: its contact rows change with it).
       const auto e = spectrum_->estimate(t_, y_.data(), 5, 30, 1e-3);
       power_ratio_ = std::max(1.0, 2.0 / std::sqrt(options_.power_margin * e.lambda) / bound);
       power_reference_ = bound;
@@ -82,8 +82,8 @@ void PolygonCentralDifference::update_stable_step() {
   }
   dt_stable_ = options_.safety * power_ratio_ * bound;
   if (options_.max_step_s > 0) dt_stable_ = std::min(dt_stable_, options_.max_step_s);
-  if (options_.contact_landing_depth > 0.0 && chain_.contact_landing_step() < dt_stable_) {
-    dt_stable_ = chain_.contact_landing_step();
+  if (options_.contact_landing_depth > 0.0 && landing < dt_stable_) {
+    dt_stable_ = landing;
     ++stats_.landing_steps;
   }
 }
