@@ -64,6 +64,7 @@ void PolygonChain::plate_contact(int r, int body, bool above, double t, const do
     const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (landing_depth_ > 0.0 && touching) note_landing(0.0, rate);  // at most `depth` deeper per step
     if (f > 0.0) {  // Gershgorin rows of the node–body block
       add_contact_rows(static_cast<std::size_t>(r * n_ind_ + j), 2.0 * w, pen, rate);
       if (body >= 0)

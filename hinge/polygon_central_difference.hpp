@@ -60,9 +60,10 @@ struct CentralDifferenceOptions {
   int power_refresh_steps = 200, power_min_refresh_steps = 10;
   double power_refresh_change = 0.05;
   // > 0: contact landing (PolygonChain::set_contact_landing, polygon_contact_landing.cpp) —
-  // each step is also at most the time in which a pair within reach, closing faster than
-  // `contact_landing_speed`, reaches this penetration (m): a closing contact is first seen at
-  // a penetration ≤ depth instead of anywhere up to ṗ Δt. 0: off.
+  // each step is also at most the time in which a pair closing faster than
+  // `contact_landing_speed` reaches this penetration (m) or, touching, goes this much deeper:
+  // a closing contact is first seen at a penetration ≤ depth instead of anywhere up to ṗ Δt,
+  // and the fast part of an impact is stepped at ≤ depth per step. 0: off.
   double contact_landing_depth = 0.0;
   double contact_landing_speed = 1.0;  // m/s
 };

@@ -251,9 +251,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
 
   // Contact landing (polygon_contact_landing.cpp; CentralDifferenceOptions::
   // contact_landing_depth): while depth > 0, every evaluation notes, over the node–plate and
-  // node–segment pairs within reach (gap ≤ t) that close faster than `min_speed`, the
-  // shortest time (gap + depth)/ṗ in which one of them would reach the penetration `depth`
-  // (contact_landing_step, ∞ when none). 0 (the default) notes nothing.
+  // node–segment pairs that close faster than `min_speed`, the shortest time in which one of
+  // them would reach the penetration `depth` (pairs within reach, gap ≤ t: (gap + depth)/ṗ)
+  // or go `depth` deeper (touching pairs: depth/ṗ) — contact_landing_step, ∞ when none.
+  // 0 (the default) notes nothing.
   void set_contact_landing(double depth, double min_speed);
   double contact_landing_step() const { return landing_step_; }
 

@@ -135,6 +135,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (landing_depth_ > 0.0 && touching) note_landing(0.0, rate);  // at most `depth` deeper per step
     if (f > 0.0) {  // Gershgorin rows of the contact block c cᵀ, c = (1, −(1 − s), −s)
       add_contact_rows(static_cast<std::size_t>(rs * n_ind_ + j), 2.0 * w, pen, rate);
       add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + a), 2.0 * w * (1 - s), pen, rate);
