@@ -58,7 +58,8 @@ struct Level2Settings {
   bool step_breakdown = false;
   // central_difference: the step from the power-iteration estimate of ω_max instead of the
   // Gershgorin bound alone (CentralDifferenceOptions::power_iteration_bound;
-  // `bench-hinge2 --step-bound power`). Off: the energy balance exceeds 1e-3 (README).
+  // `bench-hinge2 --step-bound power`). Off by default; use it with the landing below (alone
+  // the Test 30 energy balance exceeds 1e-3; README).
   bool central_difference_power_bound = false;
   // central_difference: contact landing depth as a fraction of t (CentralDifferenceOptions::
   // contact_landing_depth; `bench-hinge2 --landing`); 0: off.

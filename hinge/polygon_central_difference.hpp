@@ -53,8 +53,9 @@ struct CentralDifferenceOptions {
   // `power_refresh_change` since (a contact closed or opened), at most every
   // `power_min_refresh_steps`. Between refreshes ρ scales the current bound, so a new contact
   // still shortens the step at once. Gershgorin is 1.28–1.45× pessimistic on Test 30
-  // (bench-hinge2 --step-breakdown); the energy balance, not stability, limits the gain
-  // (README). Off by default.
+  // (bench-hinge2 --step-breakdown): 17–26 % fewer steps. Alone it takes the impact's
+  // energy-balance error over 1e-3 (free, plated); with the contact landing below the balance
+  // stays ≈ 2e-4 (README). Off by default.
   bool power_iteration_bound = false;
   double power_margin = 1.1;  // on θ, ≥ 1 (θ approaches λ_max from below)
   int power_refresh_steps = 200, power_min_refresh_steps = 10;
