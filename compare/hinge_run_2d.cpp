@@ -129,6 +129,9 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
                                                                   : hinge::PolygonIntegrator::CentralDifference;
   po.central_difference_safety = s.central_difference_safety;
   po.central_difference_implicit_dampers = s.central_difference_implicit_dampers;
+  po.step_breakdown = s.step_breakdown;
+  po.central_difference_power_bound = s.central_difference_power_bound;
+  po.central_difference_landing_depth_m = s.central_difference_landing_depth_ratio * scene.rings.wall_thickness_m;
   run.relative_tolerance_used = options.relative_tolerance >= s.min_relative_tolerance
                                     ? options.relative_tolerance
                                     : s.default_relative_tolerance;

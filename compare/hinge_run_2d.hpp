@@ -53,6 +53,17 @@ struct Level2Settings {
   // central_difference: Kelvin–Voigt ring dampers by the trapezoidal rule (a banded solve per
   // ring, the step of the undamped stiffness) or explicit (hinge/polygon_central_difference.hpp).
   bool central_difference_implicit_dampers = true;
+  // Diagnostic: the step bound's breakdown at every output sample (PolygonRunOptions::
+  // step_breakdown; `bench-hinge2 --step-breakdown`).
+  bool step_breakdown = false;
+  // central_difference: the step from the power-iteration estimate of ω_max instead of the
+  // Gershgorin bound alone (CentralDifferenceOptions::power_iteration_bound;
+  // `bench-hinge2 --step-bound power`). Off by default; use it with the landing below (alone
+  // the Test 30 energy balance exceeds 1e-3; README).
+  bool central_difference_power_bound = false;
+  // central_difference: contact landing depth as a fraction of t (CentralDifferenceOptions::
+  // contact_landing_depth; `bench-hinge2 --landing`); 0: off.
+  double central_difference_landing_depth_ratio = 0.0;
   // Wrap flag: S > fraction · πR (compare/measures inverted_arc_length) decides; W is
   // reported beside it (measured at the impactor's arrest). THEORY §4.6 proposes 0.1 πR
   // (7.7 mm) and asks for calibration. On the polygon a single kinked node gives 2ℓ0 ≈ 6.4 mm

@@ -56,6 +56,7 @@ void PolygonChain::plate_contact(int r, int body, bool above, double t, const do
     const double pen = above ? y[o + 1] + 0.5 * t_ - face : face - (y[o + 1] - 0.5 * t_);
     if (pen <= -t_) continue;
     if (record) body_contacts_.push_back({r * n_ind_ + j, body});
+    if (landing_depth_ > 0.0 && pen <= 0.0) note_landing(-pen, above ? y[o + 3] - vface : vface - y[o + 3]);
     // Near pairs (within t) keep their Jacobian entries, as zeros while apart, so that the
     // sparse pattern, and the direct solver's symbolic analysis, survive contact chatter.
     if (pen <= 0.0 && !jac_) continue;
@@ -63,6 +64,7 @@ void PolygonChain::plate_contact(int r, int body, bool above, double t, const do
     const double rate = above ? y[o + 3] - vface : vface - y[o + 3];
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (landing_depth_ > 0.0 && touching) note_landing(0.0, rate);  // at most `depth` deeper per step
     if (f > 0.0) {  // Gershgorin rows of the node–body block
       add_contact_rows(static_cast<std::size_t>(r * n_ind_ + j), 2.0 * w, pen, rate);
       if (body >= 0)

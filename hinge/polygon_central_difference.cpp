@@ -35,6 +35,7 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   a_.resize(y_.size());
   a_next_.resize(y_.size());
   chain_.set_implicit_ring_dampers(options.implicit_ring_dampers);
+  chain_.set_contact_landing(options.contact_landing_depth, options.contact_landing_speed);
   // dt = 0: no flow, but the chain notes the hinge moments the first step's work starts from.
   double no_work = 0.0;
   chain_.rhs_with_flow_update(t_, y_.data(), 0.0, a_.data(), no_work, stats_.min_flow_relaxation_s);
@@ -52,8 +53,39 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
     chain_.ring_damper_forces(y_.data(), y_.data(), damper_.data());
     for (const auto i : node_velocity_rows_) a_[i] -= damper_[i] / chain_.mass_row(i);
   }
-  dt_stable_ = options_.safety * chain_.stable_step();
+  if (options.power_iteration_bound) {
+    if (!(options.power_margin >= 1.0) || !(options.power_refresh_steps >= 1) ||
+        !(options.power_min_refresh_steps >= 1) || !(options.power_refresh_change > 0.0))
+      throw std::invalid_argument(
+          "PolygonCentralDifference: power_margin must be ≥ 1, the refresh intervals ≥ 1 and "
+          "power_refresh_change > 0");
+    spectrum_.emplace(chain);
+  }
+  update_stable_step();
+}
+
+void PolygonCentralDifference::update_stable_step() {
+  // Both from the step's evaluation (the estimate below evaluates the chain anew).
+  const double bound = chain_.stable_step(), landing = chain_.contact_landing_step();
+  if (spectrum_) {
+    ++power_age_;
+    const bool due = power_age_ >= options_.power_refresh_steps ||
+                     (power_age_ >= options_.power_min_refresh_steps &&
+                      std::abs(bound - power_reference_) > options_.power_refresh_change * power_reference_);
+    if (power_reference_ == 0.0 || due) {
+      const auto e = spectrum_->estimate(t_, y_.data(), 5, 30, 1e-3);
+      power_ratio_ = std::max(1.0, 2.0 / std::sqrt(options_.power_margin * e.lambda) / bound);
+      power_reference_ = bound;
+      power_age_ = 0;
+      ++stats_.power_refreshes;
+    }
+  }
+  dt_stable_ = options_.safety * power_ratio_ * bound;
   if (options_.max_step_s > 0) dt_stable_ = std::min(dt_stable_, options_.max_step_s);
+  if (options_.contact_landing_depth > 0.0 && landing < dt_stable_) {
+    dt_stable_ = landing;
+    ++stats_.landing_steps;
+  }
 }
 
 double PolygonCentralDifference::advance(double t_end) {
@@ -106,8 +138,7 @@ void PolygonCentralDifference::step(double dt) {
   ++stats_.steps;
   stats_.min_step_s = std::min(stats_.min_step_s, dt);
   stats_.max_step_s = std::max(stats_.max_step_s, dt);
-  dt_stable_ = options_.safety * chain_.stable_step();
-  if (options_.max_step_s > 0) dt_stable_ = std::min(dt_stable_, options_.max_step_s);
+  update_stable_step();
   if (!(dt_stable_ > 0.0) || !std::isfinite(y_[acc]))
     throw std::runtime_error("PolygonCentralDifference: no stable step at t = " + std::to_string(t_));
 }

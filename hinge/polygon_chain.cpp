@@ -250,6 +250,7 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
   std::fill(phi, phi + size_, 0.0);
   std::fill(contact_k_row_.begin(), contact_k_row_.end(), 0.0);
   std::fill(contact_c_row_.begin(), contact_c_row_.end(), 0.0);
+  landing_step_ = std::numeric_limits<double>::infinity();
   Tally tally;
   const bool plates = in_.joint == PolygonJoint::Plates;
   if (record) {

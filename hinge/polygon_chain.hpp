@@ -17,9 +17,11 @@
 // above and moves toward −y.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -221,7 +223,14 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // k(1 + χṗ)), and the damping ratio ξ of the Kelvin–Voigt, contact and mass damping rows
   // the same way; dt = min over nodes and bodies of (2/ω)(√(1 + ξ²) − ξ) (Belytschko et al.,
   // Nonlinear FE, §6.3), without safety factor.
-  double stable_step() const;
+  double stable_step() const { return stable_step(kAllStiffness); }
+  // The same bound with only the stiffness terms in `terms` (StepTerm bits; the damping rows
+  // always): which term sets the step (polygon_stiffness_spectrum.hpp, stable_step_breakdown).
+  enum StepTerm : unsigned { kMembrane = 1, kHinges = 2, kTies = 4, kContacts = 8, kAllStiffness = 15 };
+  double stable_step(unsigned terms) const;
+  // K = −∂φ/∂y of the force laws without the Kelvin–Voigt dampers (analytic_jacobian with
+  // c_b = c_θ = 0, cj = 0; polygon_stiffness_spectrum.cpp): the stiffness the step is bound by.
+  void stiffness_triplets(double t, const double* y, std::vector<Triplet>& out);
   // Kelvin–Voigt ring dampers applied implicitly by the central-difference driver
   // (polygon_implicit_dampers.cpp). While set, rhs_with_flow_update leaves the bar and hinge
   // dampers out of φ (and out of the damping power) and stable_step leaves them out of ξ;
@@ -239,6 +248,15 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // (μ + h C(x)) v = μ v* and d = C(x) v (one banded Cholesky per ring, O(N)). v may be y.
   void ring_damper_step(const double* y, double h, double* v, double* d);
   double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
+
+  // Contact landing (polygon_contact_landing.cpp; CentralDifferenceOptions::
+  // contact_landing_depth): while depth > 0, every evaluation notes, over the node–plate and
+  // node–segment pairs that close faster than `min_speed`, the shortest time in which one of
+  // them would reach the penetration `depth` (pairs within reach, gap ≤ t: (gap + depth)/ṗ)
+  // or go `depth` deeper (touching pairs: depth/ṗ) — contact_landing_step, ∞ when none.
+  // 0 (the default) notes nothing.
+  void set_contact_landing(double depth, double min_speed);
+  double contact_landing_step() const { return landing_step_; }
 
  private:
   struct Body {
@@ -365,6 +383,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
+  double landing_depth_ = 0.0, landing_speed_ = 0.0;
+  double landing_step_ = std::numeric_limits<double>::infinity();
+  void note_landing(double gap, double rate) {
+    if (rate > landing_speed_) landing_step_ = std::min(landing_step_, (gap + landing_depth_) / rate);
+  }
   // Implicit ring dampers (polygon_implicit_dampers.cpp): C of one ring in a profile
   // (skyline) lower triangle over its 2 n_ind velocity rows, row i spanning columns
   // kv_first_[i]…i from kv_start_[i]; kv_factor_ the Cholesky factor of μ + h C.

@@ -117,6 +117,13 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const int a = best_a, b = (a + 1) % n_ind_;
     if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
     const double pen = t_ - best;
+    if (landing_depth_ > 0.0 && pen <= 0.0 && best < 2.0 * t_) {  // closing speed −(v − v_q)·n
+      const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
+      const double s = best_s;
+      const double nx = (sx - ((1 - s) * y[oa] + s * y[ob])) / best, ny = (sy - ((1 - s) * y[oa + 1] + s * y[ob + 1])) / best;
+      const double vqx = (1 - s) * y[oa + 2] + s * y[ob + 2], vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
+      note_landing(-pen, -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny));
+    }
     if (pen <= 0.0 && !jac_) continue;  // near pairs keep their (zero) Jacobian entries
     const bool touching = pen > 0.0;
     const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
@@ -128,6 +135,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);
     const double w = node_weight(j);
     const double f = touching ? contact_load(w, pen, rate, tally) : 0.0;
+    if (landing_depth_ > 0.0 && touching) note_landing(0.0, rate);  // at most `depth` deeper per step
     if (f > 0.0) {  // Gershgorin rows of the contact block c cᵀ, c = (1, −(1 − s), −s)
       add_contact_rows(static_cast<std::size_t>(rs * n_ind_ + j), 2.0 * w, pen, rate);
       add_contact_rows(static_cast<std::size_t>(rm * n_ind_ + a), 2.0 * w * (1 - s), pen, rate);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "odeint_integrator.hpp"
@@ -89,10 +90,17 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
   bool go = recorder.sample(0.0, y.data());
 
   // IDA and the central difference both advance to each output time and are sampled there.
+  std::optional<PolygonStiffnessSpectrum> spectrum;
+  if (options.step_breakdown) spectrum.emplace(chain);
+  const auto breakdown = [&](double t, const double* state) {
+    if (spectrum) out.step_breakdown.emplace_back(t, stable_step_breakdown(chain, *spectrum, t, state));
+  };
+  breakdown(0.0, y.data());
   const auto march = [&](auto& stepper) {
     for (long k = 1; go; ++k) {
       const double t = stepper.advance(std::min(static_cast<double>(k) * dt, options.end_time_s));
       go = recorder.sample(t, stepper.y().data()) && t < options.end_time_s;
+      breakdown(t, stepper.y().data());
     }
     y = stepper.y();
   };
@@ -128,6 +136,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     co.safety = options.central_difference_safety;
     co.max_step_s = options.max_step_s;
     co.implicit_ring_dampers = options.central_difference_implicit_dampers;
+    co.power_iteration_bound = options.central_difference_power_bound;
+    co.contact_landing_depth = options.central_difference_landing_depth_m;
     PolygonCentralDifference cd(chain, 0.0, y, co);
     march(cd);
     const auto& s = cd.statistics();
@@ -136,6 +146,8 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.min_step_s = s.min_step_s;
     out.max_step_s = s.max_step_s;
     out.min_flow_relaxation_s = s.min_flow_relaxation_s;
+    out.power_refreshes = s.power_refreshes;
+    out.landing_steps = s.landing_steps;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

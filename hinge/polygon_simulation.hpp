@@ -4,10 +4,12 @@
 // first yield of every hinge. Plain structs in and out: no scene, no TOML (DESIGN.md).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "polygon_chain.hpp"
 #include "polygon_ida.hpp"
+#include "polygon_stiffness_spectrum.hpp"
 
 namespace ringcrush::hinge {
 
@@ -38,6 +40,13 @@ struct PolygonRunOptions {
   // tolerances above do not apply to it.
   double central_difference_safety = 0.8;
   bool central_difference_implicit_dampers = true;  // CentralDifferenceOptions::implicit_ring_dampers
+  bool central_difference_power_bound = false;      // CentralDifferenceOptions::power_iteration_bound
+  double central_difference_landing_depth_m = 0.0;  // CentralDifferenceOptions::contact_landing_depth
+  // Any integrator: at every output sample, the Gershgorin step with each stiffness term left
+  // out and the power-iteration estimate of 2/ω_max (stable_step_breakdown,
+  // polygon_stiffness_spectrum.hpp) into PolygonRunOutput::step_breakdown. A diagnostic: the
+  // run itself is unchanged (the breakdown re-evaluates the chain after the sample).
+  bool step_breakdown = false;
 };
 
 struct PolygonHistory {  // full structure (both halves), SI
@@ -62,8 +71,10 @@ struct PolygonRunOutput {
   // Central difference: the smallest and largest step taken and the shortest flow
   // relaxation time met (CentralDifferenceStatistics); 0 for the other integrators.
   double min_step_s = 0.0, max_step_s = 0.0, min_flow_relaxation_s = 0.0;
+  long power_refreshes = 0, landing_steps = 0;  // CentralDifferenceStatistics
   double wall_time_s = 0.0;
   std::vector<double> final_state;
+  std::vector<std::pair<double, StableStepBreakdown>> step_breakdown;  // (t, breakdown) per sample
 };
 
 PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const PolygonRunOptions& options);

@@ -5,7 +5,8 @@
 //   ringcrush hinge-shapes data/scenes/test30_welded.toml -o results/l2shapes [--frames 40]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
-//       [--dampers implicit|explicit]
+//       [--dampers implicit|explicit] [--step-breakdown]
+//       [--step-bound gershgorin|power] [--landing 0.002]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -22,6 +23,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "compare/cli/commands.hpp"
 #include "compare/hinge_run_2d.hpp"
@@ -54,7 +57,43 @@ struct BenchOptions {
   std::optional<int> jacobian_reuse, klu_ordering;
   std::optional<double> pattern_slack;
   std::string dampers = "implicit";
+  bool step_breakdown = false;
+  std::string step_bound = "gershgorin";
+  std::optional<double> landing;
 };
+
+// Quantiles of the step-bound breakdown over the run's samples (stable_step_breakdown,
+// hinge/polygon_stiffness_spectrum.hpp): the Gershgorin step, each term's share, and how far
+// the power-iteration 2/ω_max lies above the bound.
+void print_step_breakdown(const std::vector<std::pair<double, hinge::StableStepBreakdown>>& samples) {
+  if (samples.empty()) return;
+  auto quantiles = [&](auto get) {
+    std::vector<double> v;
+    for (const auto& s : samples) v.push_back(get(s.second));
+    std::sort(v.begin(), v.end());
+    auto at = [&](double q) { return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))]; };
+    return fmt::format("min {:.3g}  p10 {:.3g}  median {:.3g}  p90 {:.3g}  max {:.3g}", v.front(), at(0.1),
+                       at(0.5), at(0.9), v.back());
+  };
+  int unconverged = 0;
+  for (const auto& s : samples) unconverged += s.second.converged ? 0 : 1;
+  fmt::print("step-bound breakdown over {} samples ({} power iterations not converged to 1e-4):\n",
+             samples.size(), unconverged);
+  using B = hinge::StableStepBreakdown;
+  fmt::print("  Gershgorin step (us, no safety): {}\n", quantiles([](const B& b) { return b.gershgorin * 1e6; }));
+  const std::pair<const char*, double B::*> rows[] = {
+      {"power iteration 2/omega_max", &B::power_iteration},
+      {"without membrane", &B::without_membrane},
+      {"without hinges", &B::without_hinges},
+      {"without ties", &B::without_ties},
+      {"without contacts", &B::without_contacts},
+      {"membrane only", &B::membrane_only},
+      {"hinges only", &B::hinges_only},
+      {"ties only", &B::ties_only},
+      {"contacts only", &B::contacts_only}};
+  for (const auto& [name, field] : rows)
+    fmt::print("  {} / Gershgorin: {}\n", name, quantiles([f = field](const B& b) { return b.*f / b.gershgorin; }));
+}
 
 void bench(const BenchOptions& o) {
   const Scene scene = load_scene(o.scene);
@@ -67,6 +106,14 @@ void bench(const BenchOptions& o) {
   if (o.dampers != "implicit" && o.dampers != "explicit")
     throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
   settings.central_difference_implicit_dampers = o.dampers == "implicit";
+  settings.step_breakdown = o.step_breakdown;
+  if (o.step_bound != "gershgorin" && o.step_bound != "power")
+    throw std::invalid_argument("--step-bound must be gershgorin or power, not \"" + o.step_bound + "\"");
+  settings.central_difference_power_bound = o.step_bound == "power";
+  if (o.landing) {
+    if (!(*o.landing >= 0.0)) throw std::invalid_argument("--landing must be ≥ 0");
+    settings.central_difference_landing_depth_ratio = *o.landing;
+  }
   std::vector<double> walls;
   Level2Run last;
   for (int i = 0; i < o.repeat; ++i) {
@@ -88,10 +135,13 @@ void bench(const BenchOptions& o) {
                last.raw.jacobian_formations, last.raw.pattern_rebuilds, last.raw.pattern_remaps,
                last.raw.rejected_steps, last.raw.nonlinear_iterations);
   if (opt.integrator == HingeIntegrator::CentralDifference)
-    fmt::print("central difference: {} dampers, safety {:g}, steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow "
-               "relaxation time {:.3g} s\n",
-               o.dampers, settings.central_difference_safety, last.raw.min_step_s, last.raw.max_step_s,
+    fmt::print("central difference: {} dampers, {} step bound ({} estimates), landing {:g} t ({} steps), safety {:g}, "
+               "steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow relaxation time {:.3g} s\n",
+               o.dampers, o.step_bound, last.raw.power_refreshes, settings.central_difference_landing_depth_ratio,
+               last.raw.landing_steps, settings.central_difference_safety,
+               last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
+  print_step_breakdown(last.raw.step_breakdown);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
              last.raw.arrest_time_s * 1e3);
@@ -113,6 +163,13 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--pattern-slack", o->pattern_slack, "ida: fraction of stale zero entries kept in the pattern, [0, 1)");
   cmd->add_option("--dampers", o->dampers,
                   "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
+  cmd->add_option("--step-bound", o->step_bound,
+                  "central_difference: gershgorin (default) | power (power-iteration estimate of omega_max)");
+  cmd->add_option("--landing", o->landing,
+                  "central_difference: contact landing depth as a fraction of t (0: off, the default)");
+  cmd->add_flag("--step-breakdown", o->step_breakdown,
+               "at every output sample: the stable-step bound with each stiffness term left out, and the "
+               "power-iteration 2/omega_max (diagnostic)");
   cmd->callback([o] { bench(*o); });
 }
 
