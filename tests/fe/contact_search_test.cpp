@@ -300,9 +300,11 @@ TEST(ContactSearch, PassesSearchedInAnyOrderGiveTheSerialResult) {
 
 // The chain model deals the contact passes' searches to both threads with the elements
 // (chain_model.hpp): with ring↔ring, inner-wall and impactor contact all active, the force,
-// energies, contact sums, the deepest point, the active set and the contact step bound are
-// bitwise those of one thread, step after step (the helper and the caller take different
-// passes from run to run; the answer must not notice).
+// energies, contact sums, the deepest point, the active set and the pressures are bitwise
+// those of one thread, configuration after configuration (the helper and the caller take
+// different passes from call to call; the answer must not notice). Ring 3's inner wall is
+// pushed through itself (as configuration() above), which inverts its elements there: each
+// configuration is evaluated as an increment from the undeformed x_n, never committed.
 TEST(ContactSearch, ChainContactDealtToTwoThreadsIsTheOneThreadContact) {
   ChainInput in;
   in.rings = 3;
@@ -351,11 +353,8 @@ TEST(ContactSearch, ChainContactDealtToTwoThreadsIsTheOneThreadContact) {
     EXPECT_EQ(ca.max_penetration_m, cb.max_penetration_m) << where;
     EXPECT_EQ(ca.deepest_node, cb.deepest_node) << where;
     EXPECT_EQ(serial.contact_pressure(), threaded.contact_pressure()) << where;
-    EXPECT_EQ(serial.stable_step(u).step_s, threaded.stable_step(u).step_s) << where;
     EXPECT_GT(ca.ring_ring_n, 0.0) << where;
     EXPECT_GT(ca.self_n, 0.0) << where;
     EXPECT_GT(ca.impactor_n, 0.0) << where;
-    serial.commit(u);
-    threaded.commit(u);
   }
 }
