@@ -17,6 +17,7 @@
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
+#include "fe/dynamics/spin_wait.hpp"
 #include "fe/dynamics/work_dealer.hpp"
 #include "fe/element/cps8_force_lanes.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
@@ -377,11 +378,7 @@ struct ChainModel::Impl {
       if (!j.want_tangent) {
         m.deal(*j.u, j.viscous);
         // The contact passes the caller has not taken yet (once it has begun the contact).
-        while (!m.contact_ready.load(std::memory_order_acquire)) {
-#if defined(__x86_64__) || defined(__i386__)
-          __builtin_ia32_pause();
-#endif
-        }
+        for (unsigned turn = 0; !m.contact_ready.load(std::memory_order_acquire);) spin_wait_turn(turn);
         m.deal_contact();
         m.sum_slots(m.split, ne, m.helper_force.data(), j.viscous ? m.helper_viscous.data() : nullptr, j.elastic,
                     j.plastic);
