@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/contact/ring_pair_contact.hpp"
 #include "fe/dynamics/fork_join.hpp"
+#include "fe/dynamics/spin_wait.hpp"
 #include "fe/dynamics/work_dealer.hpp"
 #include "fe/element/cps8_force_lanes.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
@@ -122,6 +124,10 @@ struct ChainModel::Impl {
   std::vector<ElementMatrix> tangents;  // want_tangent with two threads: scattered after the join
   // Force-only pass with two threads: the elements dealt in chunks, each into its slot.
   WorkDealer dealer;
+  // ... and the contact passes' searches (deal_contact), once the caller has begun the
+  // contact (contact_ready).
+  WorkDealer contact_dealer;
+  std::atomic<bool> contact_ready{false};
   std::vector<ElementVector> slot_force, slot_viscous;
   std::vector<std::array<double, 2>> slot_energy;  // elastic energy, plastic work
 
@@ -283,6 +289,22 @@ struct ChainModel::Impl {
       throw;
     }
   }
+  // The searches of the contact passes with candidates (SurfaceContact::search), dealt one
+  // pass at a time to whichever thread asks: each pass writes only its own results, which
+  // SurfaceContact::finish sums in pass order, so the dealing does not change a bit.
+  void deal_contact() {
+    const auto& busy = surface->busy_passes();
+    int b = 0, end = 0;
+    try {
+      while (contact_dealer.next(b, end)) {
+        for (int i = b; i < end; ++i) surface->search(static_cast<std::size_t>(busy[i]), x);
+        contact_dealer.done(end - b);
+      }
+    } catch (...) {
+      contact_dealer.fail();
+      throw;
+    }
+  }
   // Sums the slots of [e0, e1) once every element is done; false if the other thread failed
   // (ForkJoin then rethrows its exception).
   bool sum_slots(int e0, int e1, double* force, double* viscous, double& elastic, double& plastic) const {
@@ -355,6 +377,9 @@ struct ChainModel::Impl {
       const int ne = static_cast<int>(m.topo.mesh.elements.size());
       if (!j.want_tangent) {
         m.deal(*j.u, j.viscous);
+        // The contact passes the caller has not taken yet (once it has begun the contact).
+        for (unsigned turn = 0; !m.contact_ready.load(std::memory_order_acquire);) spin_wait_turn(turn);
+        m.deal_contact();
         m.sum_slots(m.split, ne, m.helper_force.data(), j.viscous ? m.helper_viscous.data() : nullptr, j.elastic,
                     j.plastic);
         return;
@@ -527,8 +552,9 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   Impl& m = *impl_;
   if (u.size() != dofs()) throw std::invalid_argument(fmt::format("ChainModel::evaluate: u has {} values, expected {}", u.size(), dofs()));
   double contact_energy = 0, contact_time = 0;
-  // --- contact (on the calling thread, while the helper runs its share of the elements) ---
-  auto contact = [&] {
+  // --- contact (the rigid faces and the list on the calling thread, while the helper runs
+  // elements; the passes' searches dealt to both threads; the sums on the caller) ----------
+  auto contact_begin = [&] {
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t nn = mesh_.nodes.size();
     for (std::size_t i = 0; i < nn; ++i) m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
@@ -603,8 +629,14 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
         }
       }
     }
+    m.surface->begin(m.x);
+    contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto contact_finish = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    ChainContactForces& cf = m.forces;
     SurfaceContactState ss;
-    m.surface->evaluate(m.x, want_tangent, m.contributions, &m.pressure, ss);
+    m.surface->finish(m.x, want_tangent, m.contributions, &m.pressure, ss);
     cf.ring_ring_n = ss.ring_ring_force;
     cf.candidate_pairs = static_cast<long>(m.surface->candidates());
     cf.list_rebuilds = m.surface->rebuilds();
@@ -621,7 +653,14 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
       cf.active_set = (cf.active_set ^ static_cast<std::uint64_t>(c.nodes[0] + 1)) * 1099511628211ULL;
     m.surface_near_omega2 = ss.near_omega2;
     m.surface_near_node = ss.near_node;
-    contact_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto contact = [&] {  // all of it on this thread
+    contact_begin();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int pass : m.surface->busy_passes()) m.surface->search(static_cast<std::size_t>(pass), m.x);
+    contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    contact_finish();
   };
 
   // --- elements ------------------------------------------------------------------------
@@ -647,15 +686,36 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
   if (m.fork) {
     if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
     Impl::ElementJob job{&m, &u, want_tangent, viscous};
-    if (!want_tangent) m.dealer.reset(ne, kDealChunk);
+    if (!want_tangent) {
+      m.dealer.reset(ne, kDealChunk);
+      m.contact_ready.store(false, std::memory_order_relaxed);
+    }
     m.fork->run(&Impl::ElementJob::run, &job, [&] {
-      contact();
       if (want_tangent) {
+        contact();
         m.elements(0, m.split, u, want_tangent, true, out.force.data(), q_main, elastic, plastic);
-      } else {
-        m.deal(u, viscous);
-        m.sum_slots(0, m.split, out.force.data(), q_main, elastic, plastic);
+        return;
       }
+      // Force only: the caller begins the contact, then both threads deal its passes and the
+      // elements — the caller passes first, the helper elements first — so that neither
+      // waits for the other's share; the sums are formed afterwards in the fixed order.
+      try {
+        contact_begin();
+        m.contact_dealer.reset(static_cast<int>(m.surface->busy_passes().size()), 1);
+        m.contact_ready.store(true, std::memory_order_release);
+        const auto t0 = std::chrono::steady_clock::now();
+        m.deal_contact();
+        contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        m.deal(u, viscous);
+      } catch (...) {
+        m.contact_dealer.fail();
+        m.contact_ready.store(true, std::memory_order_release);
+        m.dealer.fail();
+        throw;
+      }
+      if (!m.contact_dealer.wait_all()) return;  // the helper failed: ForkJoin rethrows
+      contact_finish();
+      m.sum_slots(0, m.split, out.force.data(), q_main, elastic, plastic);
     });
     helper_elastic = job.elastic;
     helper_plastic = job.plastic;

@@ -30,8 +30,12 @@
 //    in SystemEvaluation::force and, separately, viscous_force; stable_step() is reduced by
 //    √(1 + b1²) − b1 (the central-difference limit with damping ξ = b1 in the highest mode);
 //  - with two threads (ChainInput::threads) the element loop is split over a persistent
-//    helper thread (force only: dealt in chunks while the caller also does the contact,
-//    fe/dynamics/work_dealer.hpp); the results are bitwise those of one thread.
+//    helper thread (force only: dealt in chunks, fe/dynamics/work_dealer.hpp), and so are the
+//    searches of the ring↔ring and inner-wall contact passes (force only: the caller forms the
+//    rigid faces' contact and keeps the candidate list, then both threads deal the passes —
+//    the caller passes first, the helper elements first — and the caller sums the passes in
+//    their serial order, SurfaceContact::finish); the results are bitwise those of one thread.
+//    SystemEvaluation::contact_time_s is then the caller's part of the contact only.
 #pragma once
 
 #include <Eigen/Core>

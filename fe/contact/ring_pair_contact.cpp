@@ -328,6 +328,7 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
   built_ = true;
   for (std::size_t i = 0; i < tracked_.size(); ++i) x_build_[i] = x[tracked_[i]];
   candidate_piece_.clear();
+  busy_passes_.clear();
   std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
@@ -372,6 +373,7 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
       if (static_cast<int>(candidate_piece_.size()) > start[s]) near_slaves_[pi].push_back(static_cast<int>(s));
     }
     start[p.slaves.size()] = static_cast<int>(candidate_piece_.size());
+    if (!near_slaves_[pi].empty()) busy_passes_.push_back(static_cast<int>(pi));
   }
 }
 
@@ -403,133 +405,187 @@ void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eige
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
                               std::vector<ContactContribution>& out, std::vector<std::pair<int, double>>* pressure,
                               SurfaceContactState& st) {
-  st = SurfaceContactState{};
+  begin(x);
+  for (std::size_t pi = 0; pi < passes_.size(); ++pi) search(pi, x);
+  finish(x, want_tangent, out, pressure, st);
+}
+
+void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
   bool stale = !built_;
   const double skin2 = skin_ * skin_;
   for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
     stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
   if (stale) rebuild(x);
   ++stamp_;
+  if (found_.size() != passes_.size()) found_.resize(passes_.size());
+  for (auto& r : found_) {
+    r.hits.clear();
+    r.near_omega2 = 0;
+    r.near_node = -1;
+  }
+}
+
+void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& x) {
+  const ContactPass& p = passes_[pi];
+  const auto& start = start_[pi];
+  PassFound& found = found_[pi];
+  const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
   double xy[12];
+  for (const int si : near_slaves_[pi]) {
+    const auto s = static_cast<std::size_t>(si);
+    const int node = p.slaves[s];
+    const Eigen::Vector2d& xs = x[node];
+    int best = -1;
+    double best_abs = depth_, best_f = 0, best_gap = 0;
+    // Candidates within one depth of the curve's box, with that distance as a lower bound
+    // of their |gap|; projected nearest-first, and no further once the bound exceeds the
+    // best |gap| found: the result is the same, most projections are not made. At a
+    // symmetry-plane end the accepted gap can be shorter than the distance, so such pieces
+    // get no bound.
+    struct Near { double bound; int piece; };
+    std::array<Near, 64> near;
+    int count = 0;
+    auto project = [&](int q) {
+      const PiecePolynomial& poly = poly_[pi][q];
+      double f = poly.lo - 1.0, gap = 0;
+      // surface_gap() on the cubic formed once this evaluation (the same arithmetic).
+      if (!closest_point(Cubic(cache_[pi][q].a), poly.lo, poly.hi, xs.x(), xs.y(), p.symmetric_end[q], true, f, gap))
+        return;
+      // Self contact: a closest point inside the exclusion is the slave's own wall, not a
+      // partner (its weight is zero, so dropping it is continuous).
+      const auto qi = static_cast<std::size_t>(q);
+      if (p.self && taper.weight(arc_to_closest_point(poly, p.piece_angle[qi], unwrapped_[pi][qi], p.slave_angle[s],
+                                                      f, nullptr)) == 0)
+        return;
+      // The closest owned piece decides (a node behind the wall of another piece is not
+      // "penetrating" it).
+      if (std::abs(gap) < best_abs) { best = q; best_abs = std::abs(gap); best_f = f; best_gap = gap; }
+    };
+    for (int c = start[s]; c < start[s + 1]; ++c) {
+      const int q = candidate_piece_[c];
+      PieceCache& pc = cache_[pi][q];
+      if (pc.stamp != stamp_) refresh(pi, q, x);
+      double bound = -1.0;
+      if (p.symmetric_end[q]) {
+        const double* cb = pc.box;
+        const double dx = std::max({cb[0] - xs.x(), 0.0, xs.x() - cb[1]}), dy = std::max({cb[2] - xs.y(), 0.0, xs.y() - cb[3]});
+        if (dx >= depth_ || dy >= depth_) continue;
+      } else {
+        // Distance to the chord-frame box: no more than the distance to the curve, which
+        // is |gap| at an accepted closest point; a piece at one depth or more can never be
+        // the closest within one depth.
+        const double along = xs.x() * pc.t[0] + xs.y() * pc.t[1], across = xs.y() * pc.t[0] - xs.x() * pc.t[1];
+        const double du = std::max({pc.range[0] - along, 0.0, along - pc.range[1]});
+        const double dv = std::max({pc.range[2] - across, 0.0, across - pc.range[3]});
+        if (du >= depth_ || dv >= depth_) continue;
+        bound = std::sqrt(du * du + dv * dv);
+      }
+      if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
+      else project(q);
+    }
+    while (count > 0) {
+      int k = 0;
+      for (int i = 1; i < count; ++i)
+        if (near[i].bound < near[k].bound || (near[i].bound == near[k].bound && near[i].piece < near[k].piece)) k = i;
+      if (near[k].bound >= best_abs) break;
+      project(near[k].piece);
+      near[k] = near[--count];
+    }
+    if (best < 0) continue;
+    if (slave_omega2_[pi][s] > found.near_omega2) { found.near_omega2 = slave_omega2_[pi][s]; found.near_node = node; }
+    if (!(best_gap < 0)) continue;
+    const CurvePiece& piece = p.pieces[best];
+    const PiecePolynomial& poly = poly_[pi][best];
+    const double k = p.slave_k[s];
+    Hit& h = found.hits.emplace_back();
+    h.slave = si;
+    h.piece = best;
+    h.f = best_f;
+    h.gap = best_gap;
+    xy[0] = xs.x(); xy[1] = xs.y();
+    for (int a = 0; a < piece.count; ++a) {
+      xy[2 + 2 * a] = x[piece.nodes[a]].x();
+      xy[3 + 2 * a] = x[piece.nodes[a]].y();
+    }
+    std::fill(h.force, h.force + 12, 0.0);
+    // The local force (self contact: tapered at the exclusion's edge; weight 1 elsewhere).
+    if (p.self) {
+      h.weight = tapered_self_force(poly, xy, k, best_f, best_gap, taper, p.slave_angle[s],
+                                    p.piece_angle[static_cast<std::size_t>(best)], h.force);
+    } else {
+      surface_force(poly, xy, k, best_f, best_gap, h.force);
+      h.weight = 1.0;
+    }
+  }
+}
+
+void SurfaceContact::finish(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
+                            std::vector<ContactContribution>& out, std::vector<std::pair<int, double>>* pressure,
+                            SurfaceContactState& st) const {
+  st = SurfaceContactState{};
+  double xy[12];
+  // Pass by pass, slave by slave in the order of the serial scan: the sums and the first
+  // maximum are those of one loop, whichever thread searched which pass.
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
-    const auto& start = start_[pi];
+    const PassFound& found = found_[pi];
+    if (found.near_omega2 > st.near_omega2) { st.near_omega2 = found.near_omega2; st.near_node = found.near_node; }
     const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
-    for (const int si : near_slaves_[pi]) {
-      const auto s = static_cast<std::size_t>(si);
+    for (const Hit& h : found.hits) {
+      const auto s = static_cast<std::size_t>(h.slave);
       const int node = p.slaves[s];
-      const Eigen::Vector2d& xs = x[node];
-      int best = -1;
-      double best_abs = depth_, best_f = 0, best_gap = 0;
-      // Candidates within one depth of the curve's box, with that distance as a lower bound
-      // of their |gap|; projected nearest-first, and no further once the bound exceeds the
-      // best |gap| found: the result is the same, most projections are not made. At a
-      // symmetry-plane end the accepted gap can be shorter than the distance, so such pieces
-      // get no bound.
-      struct Near { double bound; int piece; };
-      std::array<Near, 64> near;
-      int count = 0;
-      auto project = [&](int q) {
-        const PiecePolynomial& poly = poly_[pi][q];
-        double f = poly.lo - 1.0, gap = 0;
-        // surface_gap() on the cubic formed once this evaluation (the same arithmetic).
-        if (!closest_point(Cubic(cache_[pi][q].a), poly.lo, poly.hi, xs.x(), xs.y(), p.symmetric_end[q], true, f, gap))
-          return;
-        // Self contact: a closest point inside the exclusion is the slave's own wall, not a
-        // partner (its weight is zero, so dropping it is continuous).
-        const auto qi = static_cast<std::size_t>(q);
-        if (p.self && taper.weight(arc_to_closest_point(poly, p.piece_angle[qi], unwrapped_[pi][qi], p.slave_angle[s],
-                                                        f, nullptr)) == 0)
-          return;
-        // The closest owned piece decides (a node behind the wall of another piece is not
-        // "penetrating" it).
-        if (std::abs(gap) < best_abs) { best = q; best_abs = std::abs(gap); best_f = f; best_gap = gap; }
-      };
-      for (int c = start[s]; c < start[s + 1]; ++c) {
-        const int q = candidate_piece_[c];
-        PieceCache& pc = cache_[pi][q];
-        if (pc.stamp != stamp_) refresh(pi, q, x);
-        double bound = -1.0;
-        if (p.symmetric_end[q]) {
-          const double* cb = pc.box;
-          const double dx = std::max({cb[0] - xs.x(), 0.0, xs.x() - cb[1]}), dy = std::max({cb[2] - xs.y(), 0.0, xs.y() - cb[3]});
-          if (dx >= depth_ || dy >= depth_) continue;
-        } else {
-          // Distance to the chord-frame box: no more than the distance to the curve, which
-          // is |gap| at an accepted closest point; a piece at one depth or more can never be
-          // the closest within one depth.
-          const double along = xs.x() * pc.t[0] + xs.y() * pc.t[1], across = xs.y() * pc.t[0] - xs.x() * pc.t[1];
-          const double du = std::max({pc.range[0] - along, 0.0, along - pc.range[1]});
-          const double dv = std::max({pc.range[2] - across, 0.0, across - pc.range[3]});
-          if (du >= depth_ || dv >= depth_) continue;
-          bound = std::sqrt(du * du + dv * dv);
-        }
-        if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
-        else project(q);
-      }
-      while (count > 0) {
-        int k = 0;
-        for (int i = 1; i < count; ++i)
-          if (near[i].bound < near[k].bound || (near[i].bound == near[k].bound && near[i].piece < near[k].piece)) k = i;
-        if (near[k].bound >= best_abs) break;
-        project(near[k].piece);
-        near[k] = near[--count];
-      }
-      if (best < 0) continue;
-      if (slave_omega2_[pi][s] > st.near_omega2) { st.near_omega2 = slave_omega2_[pi][s]; st.near_node = node; }
-      if (!(best_gap < 0)) continue;
-      const CurvePiece& piece = p.pieces[best];
-      const PiecePolynomial& poly = poly_[pi][best];
+      const CurvePiece& piece = p.pieces[h.piece];
+      const PiecePolynomial& poly = poly_[pi][h.piece];
       const double k = p.slave_k[s];
       ContactContribution& c = out.emplace_back();
       c.count = 1 + piece.count;
       c.nodes[0] = node;
-      xy[0] = xs.x(); xy[1] = xs.y();
-      for (int a = 0; a < piece.count; ++a) {
-        c.nodes[1 + a] = piece.nodes[a];
-        xy[2 + 2 * a] = x[piece.nodes[a]].x();
-        xy[3 + 2 * a] = x[piece.nodes[a]].y();
-      }
-      c.force.setZero();
-      const std::array<double, 5>* angles = p.self ? &p.piece_angle[static_cast<std::size_t>(best)] : nullptr;
-      // The local force (self contact: tapered at the exclusion's edge; weight 1 elsewhere).
-      auto local_force = [&](double at, double g, double* force) -> double {
-        if (angles) return tapered_self_force(poly, xy, k, at, g, taper, p.slave_angle[s], *angles, force);
-        surface_force(poly, xy, k, at, g, force);
-        return 1.0;
-      };
-      const double weight = local_force(best_f, best_gap, c.force.data());
+      for (int a = 0; a < piece.count; ++a) c.nodes[1 + a] = piece.nodes[a];
+      std::copy(h.force, h.force + 12, c.force.data());
       // The full penalty k, not k·weight: the stable-step bound must not underrate the spring.
       c.stiffness = k;
-      c.gap = best_gap;
+      c.gap = h.gap;
       if (want_tangent) {
+        xy[0] = x[node].x(); xy[1] = x[node].y();
+        for (int a = 0; a < piece.count; ++a) {
+          xy[2 + 2 * a] = x[piece.nodes[a]].x();
+          xy[3 + 2 * a] = x[piece.nodes[a]].y();
+        }
+        const std::array<double, 5>* angles = p.self ? &p.piece_angle[static_cast<std::size_t>(h.piece)] : nullptr;
+        auto local_force = [&](double at, double g, double* force) {
+          if (angles) {
+            tapered_self_force(poly, xy, k, at, g, taper, p.slave_angle[s], *angles, force);
+            return;
+          }
+          surface_force(poly, xy, k, at, g, force);
+        };
         // Central differences of the exact local force (12×12 at most), symmetrised: the
         // force is the gradient of the penalty energy.
         const int n = 2 * c.count;
-        const double h = 1e-7 * depth_;
+        const double step = 1e-7 * depth_;
         double fp[12], fm[12];
         c.tangent.setZero();
         for (int j = 0; j < n; ++j) {
           const double keep = xy[j];
-          double ff = best_f, gg = 0;
-          xy[j] = keep + h;
+          double ff = h.f, gg = 0;
+          xy[j] = keep + step;
           surface_gap(poly, xy, 0, false, ff, gg);
           local_force(ff, gg, fp);
-          ff = best_f;
-          xy[j] = keep - h;
+          ff = h.f;
+          xy[j] = keep - step;
           surface_gap(poly, xy, 0, false, ff, gg);
           local_force(ff, gg, fm);
           xy[j] = keep;
-          for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * h);
+          for (int i = 0; i < n; ++i) c.tangent(i, j) = (fp[i] - fm[i]) / (2 * step);
         }
         const Eigen::Matrix<double, 12, 12> t = c.tangent;
         c.tangent = 0.5 * (t + t.transpose());
       }
-      const double fn = -weight * k * best_gap;
+      const double fn = -h.weight * k * h.gap;
       (p.self ? st.self_force : st.ring_ring_force) += fn;
-      st.energy += 0.5 * weight * k * best_gap * best_gap;
-      if (-best_gap > st.max_penetration) {
-        st.max_penetration = -best_gap;
+      st.energy += 0.5 * h.weight * k * h.gap * h.gap;
+      if (-h.gap > st.max_penetration) {
+        st.max_penetration = -h.gap;
         st.deepest_node = node;
         st.deepest_master_ring = p.master_ring;
         st.deepest_self = p.self;

@@ -115,6 +115,19 @@ class SurfaceContact {
   void evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent, std::vector<ContactContribution>& out,
                 std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state);
 
+  // evaluate() in three parts, for searching the passes on several threads (ChainModel):
+  // begin(x) on one thread (the list kept or rebuilt, the evaluation stamped), then
+  // search(pass, x) for every pass — each touches only its own pass's pieces and results, so
+  // different passes may run at once on different threads — then finish() on one thread,
+  // which forms the contributions and sums pass by pass in the serial order: bitwise
+  // evaluate(), whichever thread searched which pass.
+  void begin(const std::vector<Eigen::Vector2d>& x);
+  void search(std::size_t pass, const std::vector<Eigen::Vector2d>& x);
+  void finish(const std::vector<Eigen::Vector2d>& x, bool want_tangent, std::vector<ContactContribution>& out,
+              std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state) const;
+  // Passes that have candidates in the current list (the others find nothing), ascending.
+  const std::vector<int>& busy_passes() const { return busy_passes_; }
+
   const std::vector<ContactPass>& passes() const { return passes_; }
   long rebuilds() const { return rebuilds_; }
   std::size_t candidates() const { return candidate_piece_.size(); }
@@ -161,6 +174,21 @@ class SurfaceContact {
   };
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
+  std::vector<int> busy_passes_;
+  // What search() found in one pass: per slave with a penetrating closest point, in scan
+  // order, its piece, closest point, gap, taper weight and local force; and the largest
+  // contact-spring ω² of the slaves within one depth (the first of them if several).
+  struct Hit {
+    int slave = 0, piece = 0;
+    double f = 0, gap = 0, weight = 1;
+    double force[12];
+  };
+  struct PassFound {
+    std::vector<Hit> hits;
+    double near_omega2 = 0;
+    int near_node = -1;
+  };
+  std::vector<PassFound> found_;
 };
 
 // Gap and force of a slave node against one piece: coords = [x_s, y_s, x_1, y_1, …] (slave

@@ -116,10 +116,12 @@ void ExplicitDriver::step(double t_limit) {
   sys_.evaluate(u_, false, ev_);
   ++evaluations_;
   contact_time_ += ev_.contact_time_s;
-  int bad = -1;
-  for (int d = 0; d < ev_.force.size() && bad < 0; ++d)
-    if (!std::isfinite(ev_.force(d))) bad = d;
-  if (bad >= 0) fail("non-finite internal force (the integration has blown up)", bad);
+  // One vectorised test per step; the dof is looked for only when it fails.
+  if (!ev_.force.allFinite()) {
+    int bad = 0;
+    while (bad + 1 < ev_.force.size() && std::isfinite(ev_.force(bad))) ++bad;
+    fail("non-finite internal force (the integration has blown up)", bad);
+  }
   a_ = -inv_mass_.cwiseProduct(ev_.force);
   v_.noalias() += 0.5 * dt_ * a_;
   sys_.commit(u_);

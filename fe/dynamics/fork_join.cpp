@@ -1,16 +1,13 @@
 #include "fe/dynamics/fork_join.hpp"
 
+#include "fe/dynamics/spin_wait.hpp"
+
 namespace ringcrush::fe {
 
 namespace {
 // Spin iterations before sleeping: a few tens of µs, longer than the gap between two
 // evaluations of an explicit step, much shorter than any idle period.
 constexpr int kSpin = 20000;
-inline void relax() {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_ia32_pause();
-#endif
-}
 }  // namespace
 
 ForkJoin::ForkJoin() : thread_([this] { loop(); }) {}
@@ -31,9 +28,10 @@ unsigned ForkJoin::post(void (*job)(void*), void* context) {
 }
 
 void ForkJoin::join(unsigned ticket) {
+  unsigned turn = 0;
   for (int i = 0; i < kSpin; ++i) {
     if (finished_.load(std::memory_order_acquire) == ticket) return;
-    relax();
+    spin_wait_turn(turn);
   }
   for (;;) {
     const unsigned seen = finished_.load(std::memory_order_acquire);
@@ -53,8 +51,9 @@ void ForkJoin::loop() {
   unsigned done = 0;
   for (;;) {
     unsigned ticket = posted_.load(std::memory_order_acquire);
+    unsigned turn = 0;
     for (int i = 0; i < kSpin && ticket == done; ++i) {
-      relax();
+      spin_wait_turn(turn);
       ticket = posted_.load(std::memory_order_acquire);
     }
     if (ticket == done) {

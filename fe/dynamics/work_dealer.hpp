@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <atomic>
 
+#include "fe/dynamics/spin_wait.hpp"
+
 namespace ringcrush::fe {
 
 class WorkDealer {
@@ -40,12 +42,10 @@ class WorkDealer {
   // Spins until every item is done (true) or a thread has failed (false). The wait is the
   // length of one chunk at most: both threads deal until nothing is left.
   bool wait_all() const {
-    for (;;) {
+    for (unsigned turn = 0;;) {
       if (done_.load(std::memory_order_acquire) >= count_) return true;
       if (failed_.load(std::memory_order_acquire)) return false;
-#if defined(__x86_64__) || defined(__i386__)
-      __builtin_ia32_pause();
-#endif
+      spin_wait_turn(turn);
     }
   }
 

@@ -250,3 +250,111 @@ TEST(ContactSearch, ChainForceWithContactIsThreadIndependent) {
     threaded.commit(u);
   }
 }
+
+// SurfaceContact::begin / search / finish (the passes searched on several threads,
+// ChainModel): with the passes searched in any order — here reversed, as a second thread
+// taking the last passes first would — the contributions (force and tangent), pressures and
+// every sum and maximum of the state are bitwise those of evaluate().
+TEST(ContactSearch, PassesSearchedInAnyOrderGiveTheSerialResult) {
+  int compared = 0;
+  for (bool half : {true, false}) {
+    const Scene s = scene(3, half, 16);
+    const double depth = s.t.ring.element_depth;
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+      const auto x = configuration(s, 1, 0.12 * seed * depth, 0.12 * seed * depth, 0.05 * depth, seed);
+      for (bool tangent : {false, true}) {
+        const std::string where = (half ? "half, seed " : "full, seed ") + std::to_string(seed) +
+                                  (tangent ? ", tangent" : "");
+        SurfaceContact serial(s.passes, depth), split(s.passes, depth);
+        std::vector<ContactContribution> a, b;
+        std::vector<std::pair<int, double>> pa, pb;
+        SurfaceContactState sa, sb;
+        serial.evaluate(x, tangent, a, &pa, sa);
+        split.begin(x);
+        const auto& busy = split.busy_passes();
+        EXPECT_GT(busy.size(), 1u) << where;
+        for (auto it = busy.rbegin(); it != busy.rend(); ++it) split.search(static_cast<std::size_t>(*it), x);
+        split.finish(x, tangent, b, &pb, sb);
+        expect_same(b, a, where);
+        for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+          EXPECT_EQ(b[i].stiffness, a[i].stiffness) << where;
+          if (tangent) EXPECT_EQ(b[i].tangent, a[i].tangent) << where << ", contribution " << i;
+        }
+        EXPECT_EQ(pb, pa) << where;
+        EXPECT_EQ(sb.energy, sa.energy) << where;
+        EXPECT_EQ(sb.ring_ring_force, sa.ring_ring_force) << where;
+        EXPECT_EQ(sb.self_force, sa.self_force) << where;
+        EXPECT_EQ(sb.max_penetration, sa.max_penetration) << where;
+        EXPECT_EQ(sb.deepest_node, sa.deepest_node) << where;
+        EXPECT_EQ(sb.deepest_master_ring, sa.deepest_master_ring) << where;
+        EXPECT_EQ(sb.deepest_self, sa.deepest_self) << where;
+        EXPECT_EQ(sb.active, sa.active) << where;
+        EXPECT_EQ(sb.near_omega2, sa.near_omega2) << where;
+        EXPECT_EQ(sb.near_node, sa.near_node) << where;
+        if (sa.ring_ring_force > 0 && sa.self_force > 0) ++compared;
+      }
+    }
+  }
+  EXPECT_GE(compared, 8);  // both kinds of contact acting in most of the 16 cases
+}
+
+// The chain model deals the contact passes' searches to both threads with the elements
+// (chain_model.hpp): with ring↔ring, inner-wall and impactor contact all active, the force,
+// energies, contact sums, the deepest point, the active set and the pressures are bitwise
+// those of one thread, configuration after configuration (the helper and the caller take
+// different passes from call to call; the answer must not notice). Ring 3's inner wall is
+// pushed through itself (as configuration() above), which inverts its elements there: each
+// configuration is evaluated as an increment from the undeformed x_n, never committed.
+TEST(ContactSearch, ChainContactDealtToTwoThreadsIsTheOneThreadContact) {
+  ChainInput in;
+  in.rings = 3;
+  in.mesh.elements_around = 16;
+  in.joints = JointKind::Free;
+  in.integration = Integration::Selective;
+  in.threads = 1;
+  ChainModel serial(in);
+  in.threads = 2;
+  ChainModel threaded(in);
+  const ChainMesh& mesh = serial.mesh();
+  const double depth = serial.contact_depth();
+  const double yc = mesh.ring_centre_y.back(), ri = in.ring.inner_radius_m;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> jitter(-0.02 * depth, 0.02 * depth);
+  for (int step = 1; step <= 4; ++step) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
+    // Rings 2 and 3 raised into the ring above; ring 3 flattened so that its inner wall
+    // crosses itself (as configuration() above); the impactor pushed into ring 1.
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e)
+      for (int n : mesh.elements[e]) u(2 * n + 1) = 0.12 * step * depth * mesh.element_ring[e];
+    const double delta = 0.1 * step * depth;
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+      if (mesh.element_ring[e] != in.rings - 1) continue;
+      for (int n : mesh.elements[e]) {
+        const Eigen::Vector2d rel(mesh.nodes[n].x(), mesh.nodes[n].y() - yc);
+        u(2 * n + 1) = 0.12 * step * depth * (in.rings - 1) + rel.y() * (rel.norm() - ri - delta) / rel.norm() - rel.y();
+      }
+    }
+    for (int i = 0; i < serial.dofs(); ++i) u(i) += jitter(gen);
+    u(serial.impactor_dof()) = -0.2 * step * depth;
+    for (int dof : serial.fixed_dofs()) u(dof) = 0;
+    SystemEvaluation a, b;
+    serial.evaluate(u, false, a);
+    threaded.evaluate(u, false, b);
+    const std::string where = "step " + std::to_string(step);
+    EXPECT_EQ(a.force, b.force) << where;
+    EXPECT_EQ(a.contact_energy, b.contact_energy) << where;
+    EXPECT_EQ(a.elastic_energy, b.elastic_energy) << where;
+    const ChainContactForces &ca = serial.contact_forces(), &cb = threaded.contact_forces();
+    EXPECT_EQ(ca.active_set, cb.active_set) << where;
+    EXPECT_EQ(ca.active, cb.active) << where;
+    EXPECT_EQ(ca.ring_ring_n, cb.ring_ring_n) << where;
+    EXPECT_EQ(ca.self_n, cb.self_n) << where;
+    EXPECT_EQ(ca.impactor_n, cb.impactor_n) << where;
+    EXPECT_EQ(ca.max_penetration_m, cb.max_penetration_m) << where;
+    EXPECT_EQ(ca.deepest_node, cb.deepest_node) << where;
+    EXPECT_EQ(serial.contact_pressure(), threaded.contact_pressure()) << where;
+    EXPECT_GT(ca.ring_ring_n, 0.0) << where;
+    EXPECT_GT(ca.self_n, 0.0) << where;
+    EXPECT_GT(ca.impactor_n, 0.0) << where;
+  }
+}
