@@ -32,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "fe/contact/contact_arrival.hpp"
 #include "fe/contact/contact_element.hpp"
 #include "fe/contact/smoothed_surface.hpp"
 #include "fe/mesh/ring_mesh.hpp"
@@ -105,7 +106,10 @@ struct SurfaceContactState {
 class SurfaceContact {
  public:
   // depth: element size through the wall (largest penetration counted, box padding).
-  SurfaceContact(std::vector<ContactPass> passes, double depth);
+  // arrival_depth: deepest first sight at which a pair may start acting (m; contact_arrival.hpp);
+  // without it the reach, so only the memory acts (a pair keeps acting past the reach).
+  SurfaceContact(std::vector<ContactPass> passes, double depth, double arrival_depth);
+  SurfaceContact(std::vector<ContactPass> passes, double depth) : SurfaceContact(std::move(passes), depth, depth) {}
 
   // Mass per dof (lumped) for the frequency bound of the contact springs.
   void set_mass(const Eigen::VectorXd& mass);
@@ -114,6 +118,11 @@ class SurfaceContact {
   // null) gets (node, contact pressure) of each active slave.
   void evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent, std::vector<ContactContribution>& out,
                 std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state);
+
+  // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
+  // with the other history, after evaluating the accepted configuration).
+  void commit() { arrival_.commit(); }
+  const ContactArrival& arrival() const { return arrival_; }
 
   const std::vector<ContactPass>& passes() const { return passes_; }
   long rebuilds() const { return rebuilds_; }
@@ -161,6 +170,7 @@ class SurfaceContact {
   };
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
+  ContactArrival arrival_;
 };
 
 // Gap and force of a slave node against one piece: coords = [x_s, y_s, x_1, y_1, …] (slave

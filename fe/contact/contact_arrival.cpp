@@ -1,0 +1,80 @@
+#include "fe/contact/contact_arrival.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "fe/contact/ring_pair_contact.hpp"
+
+namespace ringcrush::fe {
+
+ContactArrival::ContactArrival(const std::vector<ContactPass>& passes, double arrival_depth)
+    : arrival_depth_(arrival_depth) {
+  if (!(arrival_depth > 0) || !std::isfinite(arrival_depth))
+    throw std::invalid_argument(
+        fmt::format("contact arrival depth {} m must be positive and finite (a new contact pair may start acting "
+                    "only at a penetration up to it)",
+                    arrival_depth));
+  committed_.reserve(passes.size());
+  neighbours_.reserve(passes.size());
+  for (const ContactPass& p : passes) {
+    committed_.emplace_back(p.slaves.size());
+    // Pieces sharing a node: the piece itself, its neighbours along the chain (a quadratic
+    // part and the Hermite junctions at its ends, or a junction and the parts it joins), so a
+    // closest point sliding across a junction stays within the pair's neighbourhood.
+    auto& nb = neighbours_.emplace_back(p.pieces.size());
+    for (std::size_t q = 0; q < p.pieces.size(); ++q)
+      for (std::size_t r = 0; r < p.pieces.size(); ++r) {
+        bool shared = q == r;
+        for (int a = 0; a < p.pieces[q].count && !shared; ++a)
+          for (int b = 0; b < p.pieces[r].count && !shared; ++b) shared = p.pieces[q].nodes[a] == p.pieces[r].nodes[b];
+        if (shared) nb[q].push_back(static_cast<int>(r));
+      }
+  }
+}
+
+bool ContactArrival::near(std::size_t pass, int remembered, int piece) const {
+  const auto& nb = neighbours_[pass][remembered];
+  return std::find(nb.begin(), nb.end(), piece) != nb.end();
+}
+
+void ContactArrival::begin() {
+  trial_.clear();
+  trial_refused_.clear();
+  trial_admitted_ = 0;
+  trial_deepest_admitted_ = 0;
+}
+
+bool ContactArrival::admit(std::size_t pass, std::size_t slave, int piece, double gap, bool continuing, int node,
+                           int master_ring, bool self) {
+  Kind kind = Kind::Active;
+  if (continuing) {
+    kind = committed_[pass][slave].kind;
+  } else if (-gap > arrival_depth_) {
+    kind = Kind::Refused;
+    trial_refused_.push_back({-gap, node, master_ring, self});
+  } else {
+    ++trial_admitted_;
+    trial_deepest_admitted_ = std::max(trial_deepest_admitted_, -gap);
+  }
+  trial_.push_back({pass, slave, {piece, kind}});
+  return kind == Kind::Active;
+}
+
+void ContactArrival::commit() {
+  for (const Entry& e : committed_list_) committed_[e.pass][e.slave] = Memory{};
+  for (const Entry& e : trial_) committed_[e.pass][e.slave] = e.memory;
+  committed_list_ = trial_;
+  refused_ += static_cast<long>(trial_refused_.size());
+  for (const RefusedArrival& r : trial_refused_)
+    if (r.depth > deepest_.depth) deepest_ = r;
+  trial_refused_.clear();
+  admitted_ += trial_admitted_;
+  deepest_admitted_ = std::max(deepest_admitted_, trial_deepest_admitted_);
+  trial_admitted_ = 0;
+  trial_deepest_admitted_ = 0;
+}
+
+}  // namespace ringcrush::fe
