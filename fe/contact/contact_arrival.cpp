@@ -50,6 +50,8 @@ void ContactArrival::begin() {
 bool ContactArrival::admit(std::size_t pass, std::size_t slave, int piece, double gap, bool continuing, int node,
                            int master_ring, bool self) {
   Kind kind = Kind::Active;
+  const Memory& was = committed_[pass][slave];
+  if (continuing && was.kind == Kind::Active && std::abs(gap - was.gap) > arrival_depth_) continuing = false;
   if (continuing) {
     kind = committed_[pass][slave].kind;
   } else if (-gap > arrival_depth_) {
@@ -59,7 +61,7 @@ bool ContactArrival::admit(std::size_t pass, std::size_t slave, int piece, doubl
     ++trial_admitted_;
     trial_deepest_admitted_ = std::max(trial_deepest_admitted_, -gap);
   }
-  trial_.push_back({pass, slave, {piece, kind}});
+  trial_.push_back({pass, slave, {piece, kind, gap}});
   return kind == Kind::Active;
 }
 

@@ -12,7 +12,7 @@
 // then taken up from the wrong side (free 30 m/s ×4 t/D 0.02, a node 75 % of the depth inside
 // its neighbour's outer surface): remembered, it is pushed back, not pulled through.
 //
-// Memory per (pass, slave): none, Active or Refused, with the master piece of the pair. The
+// Memory per (pass, slave): none, Active or Refused, with the master piece and gap of the pair. The
 // pair is that piece's neighbourhood (the pieces sharing a node with it), so it survives the
 // closest point sliding onto the next piece of the C¹ surface; the piece is updated at every
 // commit. A refused pair is remembered as well, so that it stays refused — and never adds
@@ -62,7 +62,10 @@ class ContactArrival {
   // A closed pair (gap < 0) of slave s on `piece`; continuing: it is the remembered pair,
   // re-found on its neighbourhood. Writes the trial memory; returns whether it acts: a
   // continuing pair as it was (Active acts, Refused does not), a new one if −gap is within
-  // the arrival depth (else it is refused and noted).
+  // the arrival depth (else it is refused and noted). A remembered pair whose gap moved by
+  // more than the arrival depth since the commit is judged as a first sight: its closest
+  // point jumped (a node past the centre of curvature of its partner surface, e.g. behind a
+  // crease), and taking the new gap would bring ½ k (g² − g_n²) of energy from nothing.
   bool admit(std::size_t pass, std::size_t slave, int piece, double gap, bool continuing, int node, int master_ring,
              bool self);
   // Promotes the trial memory of the last evaluation; its refusals join the run's count.
@@ -83,6 +86,7 @@ class ContactArrival {
   struct Memory {
     int piece = -1;
     Kind kind = Kind::None;
+    double gap = 0;
   };
   struct Entry {
     std::size_t pass, slave;

@@ -175,14 +175,38 @@ TEST(ContactArrival, OnlyCommitChangesTheMemory) {
   at(contact, f.x, 0.1, 0.05);  // the retry's converged configuration: open
   contact.commit();
   EXPECT_EQ(contact.arrival().refused(), 0);
-  // Accepted: the arrival at 0.1 is committed, so 0.8 deep is the same pair and acts.
+  // Accepted: the arrival at 0.1 is committed, so 0.55 deep is the same pair and acts.
   EXPECT_EQ(at(contact, f.x, 0.1, -0.1).active, 1);
+  contact.commit();
+  EXPECT_EQ(at(contact, f.x, 0.1, -0.55).active, 1);
   contact.commit();
   EXPECT_EQ(at(contact, f.x, 0.1, -0.8).active, 1);
   // Evaluating twice at the same place gives the same result (a function of x and the
   // committed memory only).
   const Seen a = at(contact, f.x, 0.3, -0.7), b = at(contact, f.x, 0.3, -0.7);
   EXPECT_EQ(a.fy, b.fy);
+}
+
+TEST(ContactArrival, AJumpOfTheGapIsAFirstSight) {
+  // An acting pair whose gap moves by more than the arrival depth in one step has had its
+  // closest point jump (a node past its partner's centre of curvature): judged as a first
+  // sight, so it cannot bring ½ k (g² − g_n²) of energy from nothing (free 30 m/s ×4 t/D
+  // 0.02: a node behind its ring's apex crease, its gap −1.02 → −2.43 depths in one step).
+  Flat f = flat();
+  SurfaceContact contact(f.passes, kDepth, kArrival);
+  at(contact, f.x, 0.1, -0.1);
+  contact.commit();
+  at(contact, f.x, 0.1, -0.2);
+  contact.commit();
+  EXPECT_EQ(at(contact, f.x, 0.1, -0.65).active, 1);  // moved 0.45: the same pair
+  const Seen s = at(contact, f.x, 0.1, -0.75);        // moved 0.55: refused
+  EXPECT_EQ(s.active, 0);
+  EXPECT_EQ(s.energy, 0.0);
+  contact.commit();
+  EXPECT_EQ(contact.arrival().refused(), 1);
+  EXPECT_NEAR(contact.arrival().deepest_refused().depth, 0.75, 1e-12);
+  // and stays refused while closed, also when it comes back within the arrival depth.
+  EXPECT_EQ(at(contact, f.x, 0.1, -0.1).active, 0);
 }
 
 TEST(ContactArrival, TangentOfAPairPastTheReachIsTheForceDerivative) {
