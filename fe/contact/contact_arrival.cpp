@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "fe/contact/ring_pair_contact.hpp"
 
@@ -24,14 +25,23 @@ ContactArrival::ContactArrival(const std::vector<ContactPass>& passes, double ar
     // Pieces sharing a node: the piece itself, its neighbours along the chain (a quadratic
     // part and the Hermite junctions at its ends, or a junction and the parts it joins), so a
     // closest point sliding across a junction stays within the pair's neighbourhood.
-    auto& nb = neighbours_.emplace_back(p.pieces.size());
+    // (node, piece) sorted by node: the pieces of each node are adjacent (linear in the mesh).
+    std::vector<std::pair<int, int>> at_node;
     for (std::size_t q = 0; q < p.pieces.size(); ++q)
-      for (std::size_t r = 0; r < p.pieces.size(); ++r) {
-        bool shared = q == r;
-        for (int a = 0; a < p.pieces[q].count && !shared; ++a)
-          for (int b = 0; b < p.pieces[r].count && !shared; ++b) shared = p.pieces[q].nodes[a] == p.pieces[r].nodes[b];
-        if (shared) nb[q].push_back(static_cast<int>(r));
-      }
+      for (int a = 0; a < p.pieces[q].count; ++a) at_node.emplace_back(p.pieces[q].nodes[a], static_cast<int>(q));
+    std::sort(at_node.begin(), at_node.end());
+    auto& nb = neighbours_.emplace_back(p.pieces.size());
+    for (std::size_t i = 0; i < at_node.size();) {
+      std::size_t j = i;
+      while (j < at_node.size() && at_node[j].first == at_node[i].first) ++j;
+      for (std::size_t a = i; a < j; ++a)
+        for (std::size_t b = i; b < j; ++b) nb[at_node[a].second].push_back(at_node[b].second);
+      i = j;
+    }
+    for (auto& list : nb) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
   }
 }
 
