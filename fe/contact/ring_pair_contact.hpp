@@ -25,6 +25,11 @@
 // — and no further once the bound reaches the best |gap| found; each piece's cubic and box
 // are formed once per evaluation, whichever slaves ask. The closest owned piece, and so every
 // contribution, is bitwise that of projecting every slave on every piece (test).
+//
+// Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
+// refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
+// acting past the reach until its gap opens, its neighbourhood of pieces deciding over the
+// closest piece while it is closed.
 #pragma once
 
 #include <Eigen/Core>
