@@ -102,6 +102,7 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   in.integration = integration_of(s.fe.integration);
   in.contact.penalty_scale = s.fe.contact_penalty_scale;
   in.contact.smoothing = s.fe.contact_smoothing;
+  in.contact.arrival_depth = s.fe.contact_arrival_depth;
   in.pitch_m = s.rings.pitch_m;
   in.joints = joint_of(s.joints.type);
   in.plate_mass_kg = s.joints.plate_mass_kg;
@@ -263,6 +264,14 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
   out.extra["contact_share"] = st.wall_time_s > 0 ? st.contact_time_s / st.wall_time_s : 0.0;
   out.extra["time_per_element_step_s"] = element_steps > 0 ? st.wall_time_s / element_steps : 0.0;
   out.extra["model_initial_kinetic_energy_J"] = r.initial_kinetic_j;
+  // The contact arrival rule acted (refused) or left a margin (admitted), fractions of the
+  // through-wall element depth (fe/contact/contact_arrival.hpp).
+  out.extra["contact_arrival"] = {{"arrival_depth", s.fe.contact_arrival_depth},
+                                  {"refused", st.refused_contact_arrivals},
+                                  {"deepest_refused", st.deepest_refused_arrival},
+                                  {"deepest_refused_at", st.deepest_refused_arrival_at},
+                                  {"admitted", st.admitted_contact_arrivals},
+                                  {"deepest_admitted", st.deepest_admitted_arrival}};
   out.extra["mesh"] = {{"elements", r.mesh.elements.size()},
                        {"nodes", r.mesh.nodes.size()},
                        {"half_ring", r.mesh.half_ring},

@@ -354,6 +354,9 @@ Scene parse_scene(const std::string& text, const std::string& file) {
             "must lie in [0, 0.5)");
     f.contact_penalty_scale = r.number("contact_penalty_scale", f.contact_penalty_scale);
     require(f.contact_penalty_scale > 0, r, "contact_penalty_scale", "must be positive");
+    f.contact_arrival_depth = r.number("contact_arrival_depth", f.contact_arrival_depth);
+    require(f.contact_arrival_depth > 0 && f.contact_arrival_depth <= 1, r, "contact_arrival_depth",
+            "must lie in (0, 1] (a fraction of the through-wall element depth)");
     f.friction_coefficient = r.number("friction_coefficient", f.friction_coefficient);
     require(f.friction_coefficient >= 0 && f.friction_coefficient <= 2, r,
             "friction_coefficient", "must lie in [0, 2]");

@@ -20,6 +20,9 @@ void validate(const FeInput& in) {
   need(in.mesh.grading >= 1, "grading must be >= 1");
   need(in.contact.penalty_scale > 0, "contact penalty scale must be positive");
   need(in.contact.smoothing >= 0 && in.contact.smoothing < 0.5, "contact smoothing must lie in [0, 0.5)");
+  if (!(in.contact.arrival_depth > 0 && in.contact.arrival_depth <= 1))
+    throw std::invalid_argument("fe input: contact arrival depth " + std::to_string(in.contact.arrival_depth) +
+                                " must lie in (0, 1] (a fraction of the through-wall element depth)");
   if (!(in.contact.friction_coefficient >= 0) || !std::isfinite(in.contact.friction_coefficient))
     throw std::invalid_argument("fe input: friction coefficient " + std::to_string(in.contact.friction_coefficient) +
                                 " must be finite and >= 0");

@@ -65,6 +65,13 @@ struct ContactInput {
   // "FE dynamics", stability matrix; tests/fe/fold_contact_test.cpp). A wall bent into a crease
   // of radius 0.02 mm still pairs no point with its own neighbourhood (same test).
   double self_contact_min_separation_rad = 0.2;
+  // Chain surface contact (ring↔ring, inner wall; fe/contact/contact_arrival.hpp): a new
+  // (node, surface) pair may start acting only if first seen at most this fraction of the
+  // penalty's reach (one through-wall element depth) inside; once acting it stays so, past
+  // the reach, until its gap opens. A real contact is first seen shallow (a step moves a node
+  // a small part of the wall depth); one first seen deep is a node behind its own creased
+  // wall (scene key `contact_arrival_depth`, in (0, 1]; 1: any pair within the reach).
+  double arrival_depth = 0.5;
   // Coulomb friction, penalty-regularised, at the rigid plates (fe/contact/plate_friction.hpp)
   // and on the inner wall against itself (slip along the smoothed surface, ring_contact.hpp);
   // scene key `friction_coefficient`. 0 = frictionless, the thesis: the friction code is then

@@ -498,7 +498,8 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
                                        kSelfContactTaperBandRad,
                                        input.contact.self_contact_two_pass))
         passes.push_back(std::move(p));
-  m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth);
+  m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth,
+                                               input.contact.arrival_depth * r.element_depth);
   m.surface->set_mass(m.mass);
   // Threads: automatic = two when the machine has two cores that are not already busy (on
   // an oversubscribed machine the fork-join waits on the scheduler and runs slower than
@@ -539,6 +540,8 @@ const std::array<double, 8>& ChainModel::element_mass(int e) const {
 }
 SparseSystem& ChainModel::tangent_system() { return *impl_->system; }
 const ChainContactForces& ChainModel::contact_forces() const { return impl_->forces; }
+
+const ContactArrival& ChainModel::contact_arrival() const { return impl_->surface->arrival(); }
 
 double ChainModel::contact_depth() const { return impl_->topo.ring.element_depth; }
 
@@ -760,6 +763,7 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   // the half-step residual of thesis §3.5).
   if (!m.trial_fresh || m.u_last.size() != u.size() || m.u_last != u) evaluate(u, false, m.scratch);
   std::swap(m.committed, m.trial);
+  m.surface->commit();
   m.trial_fresh = false;
   m.u_n = u;
   // The next increment is described on this configuration (kinematics.hpp): the element

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "fe/chain/chain_input.hpp"
+#include "fe/contact/contact_arrival.hpp"
 #include "fe/dynamics/dynamic_system.hpp"
 #include "fe/element/cps8_element.hpp"
 #include "fe/mesh/ring_mesh.hpp"
@@ -122,6 +123,8 @@ class ChainModel final : public DynamicSystem {
   // Reach of the penalty contact: one element through the wall (a deeper penetration gets
   // no force).
   double contact_depth() const;
+  // The surface contact's arrival rule so far (committed; fe/contact/contact_arrival.hpp).
+  const ContactArrival& contact_arrival() const;
   // Contact pressure per node of the last evaluate() (for field output).
   std::vector<double> contact_pressure() const;
   int impactor_dof() const { return 2 * mesh_.impactor_node + 1; }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -282,9 +283,10 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
   return out;
 }
 
-SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth)
+SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth, double arrival_depth)
     : passes_(std::move(passes)), depth_(depth), skin_(0.25 * depth) {
   if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
+  arrival_ = ContactArrival(passes_, arrival_depth);
   for (const auto& p : passes_) {
     if (p.self) ArcTaper(p.min_separation, p.taper_band);  // throws on a bad exclusion or band
     for (int s : p.slaves) tracked_.push_back(s);
@@ -356,8 +358,8 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
     for (std::size_t s = 0; s < p.slaves.size(); ++s) {
       start[s] = static_cast<int>(candidate_piece_.size());
       const auto& xs = x[p.slaves[s]];
-      if (xs.x() < m_lo_x || xs.x() > m_hi_x || xs.y() < m_lo_y || xs.y() > m_hi_y) continue;
-      for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+      const bool in_box = !(xs.x() < m_lo_x || xs.x() > m_hi_x || xs.y() < m_lo_y || xs.y() > m_hi_y);
+      for (std::size_t q = 0; in_box && q < p.pieces.size(); ++q) {
         const auto& b = box[q];
         if (xs.x() < b[0] || xs.x() > b[1] || xs.y() < b[2] || xs.y() > b[3]) continue;
         if (p.self) {
@@ -370,6 +372,10 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
         }
         candidate_piece_.push_back(static_cast<int>(q));
       }
+      // A remembered pair stays listed however deep it was pushed (contact_arrival.hpp).
+      if (const int kept = arrival_.remembered_piece(pi, s);
+          kept >= 0 && std::find(candidate_piece_.begin() + start[s], candidate_piece_.end(), kept) == candidate_piece_.end())
+        candidate_piece_.push_back(kept);
       if (static_cast<int>(candidate_piece_.size()) > start[s]) near_slaves_[pi].push_back(static_cast<int>(s));
     }
     start[p.slaves.size()] = static_cast<int>(candidate_piece_.size());
@@ -423,6 +429,7 @@ void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
     r.near_omega2 = 0;
     r.near_node = -1;
   }
+  arrival_.begin();
 }
 
 void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& x) {
@@ -491,9 +498,31 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       project(near[k].piece);
       near[k] = near[--count];
     }
+    // Arrival rule (contact_arrival.hpp): a remembered pair is found again on its
+    // neighbourhood of the surface, past the reach if need be, and decides while closed.
+    bool continuing = false;
+    if (const int kept = arrival_.remembered_piece(pi, s); kept >= 0) {
+      if (best >= 0 && arrival_.near(pi, kept, best)) {
+        continuing = best_gap < 0;
+      } else if (!(best >= 0 && best_gap < 0 && arrival_.remembered_refused(pi, s))) {
+        // (A refused pair blocks nothing elsewhere: a closed pair found on another piece
+        // is judged as an arrival.)
+        const int found_piece = best;
+        const double found_f = best_f, found_gap = best_gap;
+        best = -1;
+        best_abs = std::numeric_limits<double>::infinity();
+        for (const int q : arrival_.neighbourhood(pi, kept)) {
+          if (cache_[pi][q].stamp != stamp_) refresh(pi, q, x);
+          project(q);
+        }
+        continuing = best >= 0 && best_gap < 0;
+        if (!continuing) { best = found_piece; best_f = found_f; best_gap = found_gap; }
+      }
+    }
     if (best < 0) continue;
     if (slave_omega2_[pi][s] > found.near_omega2) { found.near_omega2 = slave_omega2_[pi][s]; found.near_node = node; }
     if (!(best_gap < 0)) continue;
+    if (!arrival_.admit(pi, s, best, best_gap, continuing, node, p.master_ring, p.self)) continue;
     const CurvePiece& piece = p.pieces[best];
     const PiecePolynomial& poly = poly_[pi][best];
     const double k = p.slave_k[s];

@@ -25,6 +25,11 @@
 // — and no further once the bound reaches the best |gap| found; each piece's cubic and box
 // are formed once per evaluation, whichever slaves ask. The closest owned piece, and so every
 // contribution, is bitwise that of projecting every slave on every piece (test).
+//
+// Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
+// refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
+// acting past the reach until its gap opens, its neighbourhood of pieces deciding over the
+// closest piece while it is closed.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "fe/contact/contact_arrival.hpp"
 #include "fe/contact/contact_element.hpp"
 #include "fe/contact/smoothed_surface.hpp"
 #include "fe/mesh/ring_mesh.hpp"
@@ -105,7 +111,10 @@ struct SurfaceContactState {
 class SurfaceContact {
  public:
   // depth: element size through the wall (largest penetration counted, box padding).
-  SurfaceContact(std::vector<ContactPass> passes, double depth);
+  // arrival_depth: deepest first sight at which a pair may start acting (m; contact_arrival.hpp);
+  // without it the reach, so only the memory acts (a pair keeps acting past the reach).
+  SurfaceContact(std::vector<ContactPass> passes, double depth, double arrival_depth);
+  SurfaceContact(std::vector<ContactPass> passes, double depth) : SurfaceContact(std::move(passes), depth, depth) {}
 
   // Mass per dof (lumped) for the frequency bound of the contact springs.
   void set_mass(const Eigen::VectorXd& mass);
@@ -127,6 +136,10 @@ class SurfaceContact {
               std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state) const;
   // Passes that have candidates in the current list (the others find nothing), ascending.
   const std::vector<int>& busy_passes() const { return busy_passes_; }
+  // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
+  // with the other history, after evaluating the accepted configuration).
+  void commit() { arrival_.commit(); }
+  const ContactArrival& arrival() const { return arrival_; }
 
   const std::vector<ContactPass>& passes() const { return passes_; }
   long rebuilds() const { return rebuilds_; }
@@ -189,6 +202,7 @@ class SurfaceContact {
     int near_node = -1;
   };
   std::vector<PassFound> found_;
+  ContactArrival arrival_;
 };
 
 // Gap and force of a slave node against one piece: coords = [x_s, y_s, x_1, y_1, …] (slave

@@ -92,6 +92,7 @@ class DynamicRun {
       res.statistics.factorizations = d.factorizations();
       res.statistics.step_limited_by = "half-step residual control (HAFTOL)";
     }
+    arrival_statistics(res.statistics);
     res.mass_scaling = model_.mass_scaling();
     res.mass_scaling.element_mass_kg *= sym_;
     res.mass_scaling.added_mass_kg *= sym_;
@@ -112,6 +113,22 @@ class DynamicRun {
     const auto& x = mesh.nodes[static_cast<std::size_t>(node)];
     return fmt::format("node {} of ring {} (X = {:.3f} mm, Y = {:.3f} mm), u{}", node + 1,
                        node_ring_[static_cast<std::size_t>(node)] + 1, x.x() * 1e3, x.y() * 1e3, axis);
+  }
+
+  // Where a contact pair was refused (the deepest, for the summary and a failure's diagnosis).
+  std::string refused_at(const RefusedArrival& r) const {
+    const std::string node = describe(2 * r.node + 1);
+    return fmt::format("{} into {}", node.substr(0, node.rfind(", u")),
+                       r.self ? std::string("its own inner wall") : fmt::format("ring {}'s outer surface", r.master_ring + 1));
+  }
+  void arrival_statistics(DynamicStatistics& st) const {
+    const ContactArrival& a = model_.contact_arrival();
+    const double depth = model_.contact_depth();
+    st.refused_contact_arrivals = a.refused();
+    st.deepest_refused_arrival = a.deepest_refused().depth / depth;
+    st.deepest_refused_arrival_at = a.refused() > 0 ? refused_at(a.deepest_refused()) : std::string();
+    st.admitted_contact_arrivals = a.admitted();
+    st.deepest_admitted_arrival = a.deepest_admitted() / depth;
   }
 
   // What the contact was doing when a step failed: the deepest penetration against the
@@ -138,6 +155,11 @@ class DynamicRun {
         c.max_penetration_m * 1e3, 100 * c.max_penetration_m / depth, depth * 1e3,
         node.substr(0, node.rfind(", u")), into,
         sym_ * d.energy().plastic, sym_ * d.energy().initial_kinetic);
+    // The arrival rule (contact_arrival.hpp): deep first sights it kept out so far.
+    const ContactArrival& a = model_.contact_arrival();
+    if (a.refused() > 0)
+      s += fmt::format("; {} contact pair(s) refused at a deep first sight so far, the deepest {:.0f} % of the depth at {}",
+                       a.refused(), 100 * a.deepest_refused().depth / depth, refused_at(a.deepest_refused()));
     return s;
   }
 

@@ -72,6 +72,14 @@ struct DynamicStatistics {
   long full_bounds = 0, contact_bounds = 0, bound_iterations = 0, bound_fallbacks = 0;
   // Explicit with a mass-scaling target: steps whose stable step stayed below it.
   long steps_below_mass_scaling_target = 0;
+  // The surface contact's arrival rule (fe/contact/contact_arrival.hpp): pairs refused at a
+  // deep first sight, the deepest of them (fraction of the through-wall element depth) and
+  // where; new pairs admitted, and their deepest first sight (fraction).
+  long refused_contact_arrivals = 0;
+  double deepest_refused_arrival = 0;
+  std::string deepest_refused_arrival_at;
+  long admitted_contact_arrivals = 0;
+  double deepest_admitted_arrival = 0;
 };
 
 struct DynamicResult {

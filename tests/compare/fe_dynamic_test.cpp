@@ -249,6 +249,22 @@ TEST(FeDynamicInput, PlatesFreeEndAndSolverKeys) {
   EXPECT_DOUBLE_EQ(fe_chain_input(free).impactor_velocity_m_s, 54.1);
 }
 
+TEST(FeDynamicInput, ContactArrivalDepthKey) {
+  // Default half the reach (fe/contact/contact_arrival.hpp); the scene key reaches the chain;
+  // a value outside (0, 1] is refused by name.
+  EXPECT_DOUBLE_EQ(fe_chain_input(load_scene(scene_path("thesis_dynamic"))).contact.arrival_depth, 0.5);
+  const Scene s = scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\ncontact_arrival_depth = 0.8"}});
+  EXPECT_DOUBLE_EQ(fe_chain_input(s).contact.arrival_depth, 0.8);
+  for (const char* bad : {"0", "-0.2", "1.5"}) {
+    try {
+      scene_variant("thesis_dynamic", {{"\\[fe\\]", std::string("[fe]\ncontact_arrival_depth = ") + bad}});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("contact_arrival_depth"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(FeDynamicInput, RefusesWhatTheDynamicFeDoesNotCover) {
   const Scene stat = load_scene(scene_path("thesis_static"));
   EXPECT_THROW(fe_chain_input(stat), std::invalid_argument);
