@@ -278,7 +278,9 @@ TEST(ContactSearch, PassesSearchedInAnyOrderGiveTheSerialResult) {
         expect_same(b, a, where);
         for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
           EXPECT_EQ(b[i].stiffness, a[i].stiffness) << where;
-          if (tangent) EXPECT_EQ(b[i].tangent, a[i].tangent) << where << ", contribution " << i;
+          if (tangent) {
+            EXPECT_EQ(b[i].tangent, a[i].tangent) << where << ", contribution " << i;
+          }
         }
         EXPECT_EQ(pb, pa) << where;
         EXPECT_EQ(sb.energy, sa.energy) << where;
