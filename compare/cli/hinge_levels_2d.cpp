@@ -58,7 +58,7 @@ struct BenchOptions {
   std::optional<double> pattern_slack;
   std::string dampers = "implicit";
   bool step_breakdown = false;
-  std::string step_bound = "gershgorin";
+  std::string step_bound = "power";
   std::optional<double> landing;
 };
 
@@ -164,9 +164,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--dampers", o->dampers,
                   "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
   cmd->add_option("--step-bound", o->step_bound,
-                  "central_difference: gershgorin (default) | power (power-iteration estimate of omega_max)");
+                  "central_difference: power (default: power-iteration estimate of omega_max) | gershgorin");
   cmd->add_option("--landing", o->landing,
-                  "central_difference: contact landing depth as a fraction of t (0: off, the default)");
+                  "central_difference: contact landing depth as a fraction of t (default 0.001; 0: off)");
   cmd->add_flag("--step-breakdown", o->step_breakdown,
                "at every output sample: the stable-step bound with each stiffness term left out, and the "
                "power-iteration 2/omega_max (diagnostic)");
