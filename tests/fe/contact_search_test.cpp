@@ -212,32 +212,64 @@ TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
   EXPECT_LT(kept.rebuilds(), static_cast<long>(moves.size()));
 }
 
-// The chain model's force with contacts active (ring↔ring, inner wall, impactor) is bitwise
-// the same on one thread or two (the contact is searched on the calling thread while both
-// deal the elements; the sums are formed in a fixed order, chain_model.hpp).
-TEST(ContactSearch, ChainForceWithContactIsThreadIndependent) {
+namespace {
+
+// Three free rings, 16 selective CPS8 per half ring: the chain of the two-thread tests below.
+ChainInput three_free_rings() {
   ChainInput in;
   in.rings = 3;
   in.mesh.elements_around = 16;
   in.joints = JointKind::Free;
   in.integration = Integration::Selective;
-  in.threads = 1;
-  ChainModel serial(in);
-  in.threads = 2;
-  ChainModel threaded(in);
-  const ChainMesh& mesh = serial.mesh();
-  const double depth = serial.contact_depth();
-  std::mt19937 gen(11);
+  return in;
+}
+
+ChainInput with_threads(ChainInput in, int threads) {
+  in.threads = threads;
+  return in;
+}
+
+// A configuration of that chain at `step`: every ring raised lift·step depths per ring into the
+// one above, the impactor pushed 0.2·step depths into ring 1, every dof jittered by up to 0.02
+// depth, fixed dofs at zero; with `inner_wall_through`, the last ring also flattened so that its
+// inner wall crosses itself by 0.1·step depths (which inverts its elements there).
+Eigen::VectorXd stacked_rings(const ChainModel& model, int step, double lift, bool inner_wall_through,
+                              std::mt19937& gen) {
+  const ChainMesh& mesh = model.mesh();
+  const double depth = model.contact_depth();
+  const int rings = model.input().rings;
   std::uniform_real_distribution<double> jitter(-0.02 * depth, 0.02 * depth);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e)
+    for (int n : mesh.elements[e]) u(2 * n + 1) = lift * step * depth * mesh.element_ring[e];
+  if (inner_wall_through) {
+    const double yc = mesh.ring_centre_y.back(), ri = model.input().ring.inner_radius_m;
+    const double delta = 0.1 * step * depth;
+    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+      if (mesh.element_ring[e] != rings - 1) continue;
+      for (int n : mesh.elements[e]) {
+        const Eigen::Vector2d rel(mesh.nodes[n].x(), mesh.nodes[n].y() - yc);
+        u(2 * n + 1) = lift * step * depth * (rings - 1) + rel.y() * (rel.norm() - ri - delta) / rel.norm() - rel.y();
+      }
+    }
+  }
+  for (int i = 0; i < model.dofs(); ++i) u(i) += jitter(gen);
+  u(model.impactor_dof()) = -0.2 * step * depth;
+  for (int dof : model.fixed_dofs()) u(dof) = 0;
+  return u;
+}
+
+}  // namespace
+
+// The chain model's force with contacts active (ring↔ring, inner wall, impactor) is bitwise
+// the same on one thread or two (the contact is searched on the calling thread while both
+// deal the elements; the sums are formed in a fixed order, chain_model.hpp).
+TEST(ContactSearch, ChainForceWithContactIsThreadIndependent) {
+  const ChainInput in = three_free_rings();
+  ChainModel serial(with_threads(in, 1)), threaded(with_threads(in, 2));
+  std::mt19937 gen(11);
   for (int step = 1; step <= 3; ++step) {
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
-    // Rings 2 and 3 raised into the ring above (0.15, 0.30, 0.45 of the wall), the impactor
-    // pushed into ring 1, every ring node jittered.
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e)
-      for (int n : mesh.elements[e]) u(2 * n + 1) = 0.15 * step * depth * mesh.element_ring[e];
-    for (int i = 0; i < serial.dofs(); ++i) u(i) += jitter(gen);
-    u(serial.impactor_dof()) = -0.2 * step * depth;
-    for (int dof : serial.fixed_dofs()) u(dof) = 0;
+    const Eigen::VectorXd u = stacked_rings(serial, step, 0.15, false, gen);
     SystemEvaluation a, b;
     serial.evaluate(u, false, a);
     threaded.evaluate(u, false, b);
@@ -308,37 +340,11 @@ TEST(ContactSearch, PassesSearchedInAnyOrderGiveTheSerialResult) {
 // pushed through itself (as configuration() above), which inverts its elements there: each
 // configuration is evaluated as an increment from the undeformed x_n, never committed.
 TEST(ContactSearch, ChainContactDealtToTwoThreadsIsTheOneThreadContact) {
-  ChainInput in;
-  in.rings = 3;
-  in.mesh.elements_around = 16;
-  in.joints = JointKind::Free;
-  in.integration = Integration::Selective;
-  in.threads = 1;
-  ChainModel serial(in);
-  in.threads = 2;
-  ChainModel threaded(in);
-  const ChainMesh& mesh = serial.mesh();
-  const double depth = serial.contact_depth();
-  const double yc = mesh.ring_centre_y.back(), ri = in.ring.inner_radius_m;
+  const ChainInput in = three_free_rings();
+  ChainModel serial(with_threads(in, 1)), threaded(with_threads(in, 2));
   std::mt19937 gen(5);
-  std::uniform_real_distribution<double> jitter(-0.02 * depth, 0.02 * depth);
   for (int step = 1; step <= 4; ++step) {
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
-    // Rings 2 and 3 raised into the ring above; ring 3 flattened so that its inner wall
-    // crosses itself (as configuration() above); the impactor pushed into ring 1.
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e)
-      for (int n : mesh.elements[e]) u(2 * n + 1) = 0.12 * step * depth * mesh.element_ring[e];
-    const double delta = 0.1 * step * depth;
-    for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
-      if (mesh.element_ring[e] != in.rings - 1) continue;
-      for (int n : mesh.elements[e]) {
-        const Eigen::Vector2d rel(mesh.nodes[n].x(), mesh.nodes[n].y() - yc);
-        u(2 * n + 1) = 0.12 * step * depth * (in.rings - 1) + rel.y() * (rel.norm() - ri - delta) / rel.norm() - rel.y();
-      }
-    }
-    for (int i = 0; i < serial.dofs(); ++i) u(i) += jitter(gen);
-    u(serial.impactor_dof()) = -0.2 * step * depth;
-    for (int dof : serial.fixed_dofs()) u(dof) = 0;
+    const Eigen::VectorXd u = stacked_rings(serial, step, 0.12, true, gen);
     SystemEvaluation a, b;
     serial.evaluate(u, false, a);
     threaded.evaluate(u, false, b);

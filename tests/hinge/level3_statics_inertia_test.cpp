@@ -16,19 +16,15 @@
 #include "chain_fixtures.hpp"
 #include "hinge/level3_mechanism.hpp"
 #include "hinge/level3_statics.hpp"
+#include "level3_ring_fixtures.hpp"
 
 using namespace ringcrush::hinge;
 using std::numbers::pi;
 
 namespace {
 
-const Level3Ring kRing{0.0508, 0.0016, 2.184, 0.0};  // Test 30 ring, rigid-perfectly plastic
-
-Level3Shape uniform_shape(double phi, int n = 48) {
-  Level3RingResult s;
-  s.uniform_angle = phi;
-  return level3_ring_shape(kRing, WrapMechanism{}, s, 0.0, n);
-}
+const Level3Ring& kRing = ringcrush::hinge::testing::kLevel3Ring;
+using ringcrush::hinge::testing::uniform_shape;
 
 double ring_mass() { return ringcrush::hinge::testing::test30_ring().mass_kg; }
 

@@ -10,20 +10,15 @@
 
 #include "hinge/level3_mechanism.hpp"
 #include "hinge/level3_statics.hpp"
+#include "level3_ring_fixtures.hpp"
 
 using namespace ringcrush::hinge;
 using std::numbers::pi;
 
 namespace {
 
-const Level3Ring kRing{0.0508, 0.0016, 2.184, 0.0};  // Test 30 ring, rigid-perfectly plastic
-
-// A ring crushed uniformly (DeRuntz–Hodge) to quadrant angle φ, drawn with n points a quadrant.
-Level3Shape uniform_shape(double phi, int n = 48) {
-  Level3RingResult s;
-  s.uniform_angle = phi;
-  return level3_ring_shape(kRing, WrapMechanism{}, s, 0.0, n);
-}
+const Level3Ring& kRing = ringcrush::hinge::testing::kLevel3Ring;
+using ringcrush::hinge::testing::uniform_shape;
 
 }  // namespace
 

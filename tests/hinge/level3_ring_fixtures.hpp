@@ -1,0 +1,18 @@
+// The Test 30 ring as a rigid-perfectly-plastic Level 3 ring, and its uniformly crushed shape:
+// shared by the statics-check tests with and without ring inertia.
+#pragma once
+
+#include "hinge/level3_mechanism.hpp"
+
+namespace ringcrush::hinge::testing {
+
+inline const Level3Ring kLevel3Ring{0.0508, 0.0016, 2.184, 0.0};  // Test 30 ring, no hardening
+
+// A ring crushed uniformly (DeRuntz–Hodge) to quadrant angle φ, drawn with n points a quadrant.
+inline Level3Shape uniform_shape(double phi, int n = 48) {
+  Level3RingResult s;
+  s.uniform_angle = phi;
+  return level3_ring_shape(kLevel3Ring, WrapMechanism{}, s, 0.0, n);
+}
+
+}  // namespace ringcrush::hinge::testing
