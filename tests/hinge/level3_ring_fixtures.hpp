@@ -1,5 +1,5 @@
 // The Test 30 ring as a rigid-perfectly-plastic Level 3 ring, and its uniformly crushed shape:
-// shared by the statics-check tests with and without ring inertia.
+// shared by the statics-check tests with and without ring inertia, and their plated chain.
 #pragma once
 
 #include "hinge/level3_mechanism.hpp"
@@ -13,6 +13,18 @@ inline Level3Shape uniform_shape(double phi, int n = 48) {
   Level3RingResult s;
   s.uniform_angle = phi;
   return level3_ring_shape(kLevel3Ring, WrapMechanism{}, s, 0.0, n);
+}
+
+// Three such rings between rigid plates, struck by Test 30's 0.257 kg at 20 m/s (massless rings
+// unless the test sets `inertia`).
+inline Level3Input plated_three_rings() {
+  Level3Input in;
+  in.rings = 3;
+  in.ring = kLevel3Ring;
+  in.plates = true;
+  in.impactor_mass_kg = 0.257;
+  in.impactor_velocity_m_s = 20.0;
+  return in;
 }
 
 }  // namespace ringcrush::hinge::testing

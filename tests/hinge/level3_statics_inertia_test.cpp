@@ -184,12 +184,7 @@ TEST(Level3StaticsInertia, BadInputIsRejected) {
 // is ≥ 1 (to the lumping and the flat-edge fit); with m_r/1000 it is the massless chain's 1
 // (PlatedChainRingsStayAtYield: 5e-4).
 TEST(Level3StaticsInertia, PlatedChainWithInertia) {
-  Level3Input in;
-  in.rings = 3;
-  in.ring = kRing;
-  in.plates = true;
-  in.impactor_mass_kg = 0.257;
-  in.impactor_velocity_m_s = 20.0;
+  Level3Input in = ringcrush::hinge::testing::plated_three_rings();
   in.inertia = true;
   in.ring_mass_kg = ring_mass();
   HybridOptions o;

@@ -99,12 +99,7 @@ TEST(Level3Statics, BadInputIsRejected) {
 // the common force, so every ring's statics ratio over the run is 1 (at yield, never above);
 // 5e-4: the flat-edge fit on the chain's 48-point shapes over φ up to 1.3 rad.
 TEST(Level3Statics, PlatedChainRingsStayAtYield) {
-  Level3Input in;
-  in.rings = 3;
-  in.ring = kRing;
-  in.plates = true;
-  in.impactor_mass_kg = 0.257;
-  in.impactor_velocity_m_s = 20.0;
+  Level3Input in = ringcrush::hinge::testing::plated_three_rings();
   HybridOptions o;
   o.relative_tolerance = 1e-10;
   o.absolute_tolerance = 1e-12;
