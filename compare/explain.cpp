@@ -68,6 +68,11 @@ std::vector<std::string> explain_fe(const Scene& s) {
                                 ? "the assembled power-iteration estimate of omega_max"
                                 : "the element/contact stability bound",
                             chain.step_bound == fe::StepBound::Assembled ? "assembled" : "element"));
+  if (chain.contact_penalty_step_fraction > 0)
+    e.push_back(fmt::format("contact penalty lowered (fe.contact_penalty_step_fraction = {:g}): every contact spring "
+                            "x one factor, so that the stiffest costs at most {:g} % of the element step; the scale "
+                            "used and the deepest penetration are in summary.json (contact_penalty)",
+                            chain.contact_penalty_step_fraction, 100 * chain.contact_penalty_step_fraction));
   if (solver.scheme == fe::DynamicScheme::Explicit && chain.mass_scaling.active())
     e.push_back(fmt::format("MASS SCALING, a change of the physics (fe.mass_scaling_dt = {:g} s, fe.mass_scaling_factor "
                             "= {:g}): every element's density x the factor, then every element whose own step "

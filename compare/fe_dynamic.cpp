@@ -103,6 +103,7 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   in.contact.penalty_scale = s.fe.contact_penalty_scale;
   in.contact.smoothing = s.fe.contact_smoothing;
   in.contact.arrival_depth = s.fe.contact_arrival_depth;
+  in.contact_penalty_step_fraction = s.fe.contact_penalty_step_fraction;
   in.pitch_m = s.rings.pitch_m;
   in.joints = joint_of(s.joints.type);
   in.plate_mass_kg = s.joints.plate_mass_kg;
@@ -272,6 +273,12 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
                                   {"deepest_refused_at", st.deepest_refused_arrival_at},
                                   {"admitted", st.admitted_contact_arrivals},
                                   {"deepest_admitted", st.deepest_admitted_arrival}};
+  // The penalty the springs used (lowered by fe.contact_penalty_step_fraction when set) and
+  // the deepest penetration it let through, over the accepted steps, in wall thicknesses.
+  out.extra["contact_penalty"] = {{"scale", st.contact_penalty_scale},
+                                  {"step_fraction", s.fe.contact_penalty_step_fraction},
+                                  {"max_penetration_m", st.max_penetration_m},
+                                  {"max_penetration_per_wall", st.max_penetration_m / s.rings.wall_thickness_m}};
   out.extra["mesh"] = {{"elements", r.mesh.elements.size()},
                        {"nodes", r.mesh.nodes.size()},
                        {"half_ring", r.mesh.half_ring},

@@ -354,6 +354,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
             "must lie in [0, 0.5)");
     f.contact_penalty_scale = r.number("contact_penalty_scale", f.contact_penalty_scale);
     require(f.contact_penalty_scale > 0, r, "contact_penalty_scale", "must be positive");
+    f.contact_penalty_step_fraction = r.number("contact_penalty_step_fraction", f.contact_penalty_step_fraction);
+    require(f.contact_penalty_step_fraction == 0 ||
+                (f.contact_penalty_step_fraction > 0 && f.contact_penalty_step_fraction <= 0.5),
+            r, "contact_penalty_step_fraction", "must be 0 (off) or lie in (0, 0.5]");
     f.contact_arrival_depth = r.number("contact_arrival_depth", f.contact_arrival_depth);
     require(f.contact_arrival_depth > 0 && f.contact_arrival_depth <= 1, r, "contact_arrival_depth",
             "must lie in (0, 1] (a fraction of the through-wall element depth)");

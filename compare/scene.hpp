@@ -97,6 +97,9 @@ struct FeSettings {
   int max_iterations = 10;           // static: Newton iterations per increment (thesis CYCLE)
   double contact_smoothing = 0.25;   // Hermite junction smoothing of slide lines (thesis SMOOTH)
   double contact_penalty_scale = 1.0;
+  // Dynamic FE: > 0 lowers the penalty scale until the stiffest contact spring costs at most
+  // this fraction of the explicit element step (fe/contact/penalty_step_cap.hpp); 0 = off.
+  double contact_penalty_step_fraction = 0.0;
   // Dynamic FE: a new ring↔ring or inner-wall contact pair acts only if first seen at most
   // this fraction of the through-wall element depth inside (fe/contact/contact_arrival.hpp).
   double contact_arrival_depth = 0.5;

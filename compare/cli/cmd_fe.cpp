@@ -50,6 +50,7 @@ struct FeOptions {
   int threads = 0;          // element-loop threads of a dynamic run (0: automatic, chain_input.hpp)
   std::string step_bound;   // explicit: "element" (default) | "assembled" (fe/chain/chain_input.hpp)
   double mass_scaling_dt = -1;  // ≥ 0: overrides fe.mass_scaling_dt (explicit; 0 = off)
+  double penalty_step_fraction = -1;  // ≥ 0: overrides fe.contact_penalty_step_fraction (0 = off)
 };
 
 const char* integration_name(fe::Integration i) {
@@ -111,6 +112,14 @@ Scene scene_with_overrides(const FeOptions& o) {
     if (s.analysis.type == AnalysisType::Static)
       throw std::invalid_argument("ringcrush fe: --mass-scaling-dt applies to dynamic scenes (explicit solver) only");
     s.fe.mass_scaling_dt = o.mass_scaling_dt;
+  }
+  if (o.penalty_step_fraction >= 0) {
+    if (s.analysis.type == AnalysisType::Static)
+      throw std::invalid_argument("ringcrush fe: --penalty-step-fraction applies to dynamic scenes only");
+    if (o.penalty_step_fraction > 0.5)
+      throw std::invalid_argument(fmt::format(
+          "ringcrush fe: --penalty-step-fraction {} must be 0 (off) or lie in (0, 0.5]", o.penalty_step_fraction));
+    s.fe.contact_penalty_step_fraction = o.penalty_step_fraction;
   }
   if (o.end_time_s > 0) {
     if (s.analysis.type == AnalysisType::Static)
@@ -194,6 +203,10 @@ void add_fe_command(CLI::App& app) {
   cmd->add_option("--mass-scaling-dt", o->mass_scaling_dt,
                   "Explicit: fixed mass scaling to this target step (s; 0 off), overrides fe.mass_scaling_dt "
                   "(changes the physics: the added mass is reported)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--penalty-step-fraction", o->penalty_step_fraction,
+                  "Dynamic: lower the contact penalty until its springs cost at most this fraction of the element "
+                  "step (0 off, (0, 0.5]), overrides fe.contact_penalty_step_fraction")
       ->check(CLI::NonNegativeNumber);
   cmd->callback([o] { run_fe(*o); });
 }

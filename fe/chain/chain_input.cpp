@@ -15,6 +15,10 @@ void validate(const ChainInput& in) {
   need(in.step_bound_margin >= 1 && in.step_bound_margin <= 2,
        fmt::format("step_bound_margin must lie in [1, 2] (got {})", in.step_bound_margin));
   validate(in.mass_scaling);
+  need(in.contact_penalty_step_fraction == 0 ||
+           (in.contact_penalty_step_fraction > 0 && in.contact_penalty_step_fraction <= 0.5),
+       fmt::format("contact_penalty_step_fraction must be 0 (off) or lie in (0, 0.5] (got {})",
+                   in.contact_penalty_step_fraction));
   need(in.threads >= 0 && in.threads <= 2, fmt::format("threads must be 0 (automatic), 1 or 2 (got {})", in.threads));
   // Ring, material, mesh and contact: the same rules as the single-ring model.
   FeInput single;

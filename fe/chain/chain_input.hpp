@@ -46,6 +46,10 @@ struct ChainInput {
   // two idle cores and the chain at least 64 elements), 1 = one, 2 = two. The results are
   // bitwise the same either way.
   int threads = 0;
+  // A penalty that does not shorten the explicit step (fe/contact/penalty_step_cap.hpp): > 0
+  // lowers contact.penalty_scale, uniformly, until the stiffest contact spring costs at most
+  // this fraction of the element step (in (0, 0.5]); 0 = off, the penalty scale as given.
+  double contact_penalty_step_fraction = 0.0;
   StepBound step_bound = StepBound::Element;
   double step_bound_margin = 1.05;  // Assembled: ω² = margin · θ, in [1, 2]
   // Explicit only, off by default: fixed mass scaling (fe/dynamics/mass_scaling.hpp), a

@@ -20,6 +20,7 @@
 #include "fe/dynamics/spin_wait.hpp"
 #include "fe/dynamics/work_dealer.hpp"
 #include "fe/element/cps8_force_lanes.hpp"
+#include "fe/contact/penalty_step_cap.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
@@ -98,8 +99,13 @@ struct ChainModel::Impl {
   std::vector<double> stiffness_scale;
   std::unique_ptr<AssembledEigenvalue> assembled;
   long assembled_calls = 0, assembled_iterations = 0, assembled_fallbacks = 0;
+  std::unique_ptr<AssembledEigenvalue> elements_only;  // elements_only_assembled_omega2()
+  std::vector<std::array<int, 16>> element_dofs;
+  Eigen::VectorXd inv_sqrt_mass;
+  StepParts parts;
   ChainContactForces forces;
   std::vector<std::pair<int, double>> pressure;
+  double penalty_scale = 1;  // contact.penalty_scale, lowered by contact_penalty_step_fraction
   double face_near_omega2 = 0, surface_near_omega2 = 0;
   int face_near_node = -1, surface_near_node = -1;
   std::vector<std::array<double, 4>> ring_box;  // per ring: outer node box (lo x, hi x, lo y, hi y)
@@ -463,16 +469,14 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     for (int p : mesh_.plate_nodes) inv_sqrt(2 * p + 1) = 1 / std::sqrt(m.mass(2 * p + 1));
     for (int d : m.topo.fixed_dofs) inv_sqrt(d) = 0;
     m.stiffness_scale.assign(ne, 1.0);
+    m.element_dofs = dofs;
+    m.inv_sqrt_mass = inv_sqrt;
     m.assembled = std::make_unique<AssembledEigenvalue>(std::move(dofs), std::move(inv_sqrt));
   }
 
   // Contact: penalty per outer node as RingContact (penalty_scale · E · w · L / h).
   const RingMesh& r = m.topo.ring;
-  const double k_scale = input.contact.penalty_scale * input.material.youngs_modulus_pa * input.ring.width_m / r.element_depth;
-  for (double w : r.outer_weight) {
-    m.outer_k.push_back(k_scale * w);
-    m.outer_area.push_back(w * input.ring.width_m);
-  }
+  m.penalty_scale = input.contact.penalty_scale;
   std::vector<int> all_rings(input.rings);
   for (int i = 0; i < input.rings; ++i) all_rings[i] = i;
   m.faces.push_back({RigidFace::Kind::Impactor, mesh_.impactor_node, mesh_.nodes[mesh_.impactor_node].y(), -1.0, all_rings});
@@ -486,18 +490,49 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     m.faces.push_back({RigidFace::Kind::Plate, node, yc - half, -1.0, below});
   }
   std::vector<ContactPass> passes;
-  for (int i = 0; i < input.rings; ++i)
-    for (int j = 0; j < input.rings; ++j)
-      if (i != j)
-        passes.push_back(outer_pass(r, m.topo.ring_node[i], i, m.topo.ring_node[j], j, k_scale, input.ring.width_m,
-                                    input.contact.smoothing));
-  if (input.contact.self_contact)
+  auto penalties = [&] {  // every contact spring at m.penalty_scale
+    const double k_scale = m.penalty_scale * input.material.youngs_modulus_pa * input.ring.width_m / r.element_depth;
+    m.outer_k.clear();
+    m.outer_area.clear();
+    for (double w : r.outer_weight) {
+      m.outer_k.push_back(k_scale * w);
+      m.outer_area.push_back(w * input.ring.width_m);
+    }
+    passes.clear();
     for (int i = 0; i < input.rings; ++i)
-      for (auto& p : inner_wall_passes(r, m.topo.ring_node[i], i, k_scale, input.ring.width_m, input.contact.smoothing,
-                                       input.contact.self_contact_min_separation_rad,
-                                       kSelfContactTaperBandRad,
-                                       input.contact.self_contact_two_pass))
-        passes.push_back(std::move(p));
+      for (int j = 0; j < input.rings; ++j)
+        if (i != j)
+          passes.push_back(outer_pass(r, m.topo.ring_node[i], i, m.topo.ring_node[j], j, k_scale, input.ring.width_m,
+                                      input.contact.smoothing));
+    if (input.contact.self_contact)
+      for (int i = 0; i < input.rings; ++i)
+        for (auto& p : inner_wall_passes(r, m.topo.ring_node[i], i, k_scale, input.ring.width_m, input.contact.smoothing,
+                                         input.contact.self_contact_min_separation_rad,
+                                         kSelfContactTaperBandRad,
+                                         input.contact.self_contact_two_pass))
+          passes.push_back(std::move(p));
+  };
+  penalties();
+  if (input.contact_penalty_step_fraction > 0) {
+    // The penalty that costs at most the set fraction of the element step
+    // (penalty_step_cap.hpp): the stiffest spring of the model as the bound counts it, on the
+    // rigid faces and on the surfaces, against the largest element eigenvalue at t = 0.
+    double spring = surface_spring_omega2(passes, m.mass);
+    for (const RigidFace& face : m.faces) {
+      const double inv_body = face.body_node >= 0 ? 1.0 / m.mass(2 * face.body_node + 1) : 0.0;
+      for (int ring : face.rings)
+        for (std::size_t i = 0; i < r.outer_nodes.size(); ++i) {
+          const int node = m.topo.ring_node[ring][r.outer_nodes[i]];
+          spring = std::max(spring, m.outer_k[i] * (1.0 / m.mass(2 * node + 1) + inv_body));
+        }
+    }
+    const double element = *std::max_element(m.omega2_exact.begin(), m.omega2_exact.end());
+    const double factor = penalty_step_factor(input.contact_penalty_step_fraction, element, spring);
+    if (factor < 1) {
+      m.penalty_scale *= factor;
+      penalties();
+    }
+  }
   m.surface = std::make_unique<SurfaceContact>(std::move(passes), r.element_depth,
                                                input.contact.arrival_depth * r.element_depth);
   m.surface->set_mass(m.mass);
@@ -832,6 +867,7 @@ StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
   const int contact_node = surface_wins ? m.surface_near_node : m.face_near_node;
   double w2 = el + contact;
   std::string limited_by = contact > el ? fmt::format("contact penalty, node {}", contact_node + 1) : m.element_limited_by;
+  m.parts = StepParts{el, contact, 0, 1};
   if (input_.step_bound == StepBound::Assembled) {
     // The assembled estimate (assembled_eigenvalue.hpp) of the scaled element matrices and
     // the ACTIVE penalty springs (k G Gᵀ) together, instead of the sum of the largest element
@@ -846,6 +882,7 @@ StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
     m.assembled_iterations += est.iterations;
     if (est.converged && est.lambda > 0) {
       const double sharp = input_.step_bound_margin * est.lambda;
+      m.parts.assembled_omega2 = sharp;
       if (sharp < w2) {
         limited_by = fmt::format("assembled power iteration ({} it., {:.3f} of the element + contact bound, {})",
                                  est.iterations, std::sqrt(sharp / w2), limited_by);
@@ -861,6 +898,7 @@ StableStep ChainModel::contact_stable_step(const Eigen::VectorXd& /*u*/) const {
   // Δt ≤ (2/ω_max)(√(1 + ξ²) − ξ) (ABAQUS Analysis Guide, explicit stability limit).
   const double xi = input_.bulk_viscosity;
   if (xi > 0) s.step_s *= std::sqrt(1 + xi * xi) - xi;
+  if (xi > 0) m.parts.bulk_factor = std::sqrt(1 + xi * xi) - xi;
   s.limited_by = limited_by;
   return s;
 }
@@ -895,6 +933,22 @@ std::vector<Cps8Fields> ChainModel::element_fields() const {
   for (std::size_t e = 0; e < mesh_.elements.size(); ++e)
     out.push_back(cps8_fields(&m.committed[e * m.points_per_element], m.points_per_element));
   return out;
+}
+
+double ChainModel::contact_penalty_scale() const { return impl_->penalty_scale; }
+
+const ChainModel::StepParts& ChainModel::step_parts() const { return impl_->parts; }
+
+double ChainModel::elements_only_assembled_omega2() const {
+  Impl& m = *impl_;
+  if (input_.step_bound != StepBound::Assembled)
+    throw std::logic_error("ChainModel::elements_only_assembled_omega2 needs StepBound::Assembled");
+  if (!(m.element_omega2 > 0)) throw std::logic_error("ChainModel::elements_only_assembled_omega2 before stable_step");
+  const bool first = !m.elements_only;
+  if (first) m.elements_only = std::make_unique<AssembledEigenvalue>(m.element_dofs, m.inv_sqrt_mass);
+  const AssembledEstimate est =
+      m.elements_only->estimate(m.stiffness_exact, m.stiffness_scale, first ? 200 : 3, first ? 2000 : 200, 1e-4);
+  return est.converged ? input_.step_bound_margin * est.lambda : 0.0;
 }
 
 ChainModel::StepBoundStatistics ChainModel::step_bound_statistics() const {

@@ -136,6 +136,22 @@ class ChainModel final : public DynamicSystem {
   // the element bound (iteration not settled).
   struct StepBoundStatistics { long calls = 0, iterations = 0, fallbacks = 0; };
   StepBoundStatistics step_bound_statistics() const;
+  // The penalty scale the contact springs use: ChainInput::contact.penalty_scale, lowered by
+  // contact_penalty_step_fraction when that is set (fe/contact/penalty_step_cap.hpp).
+  double contact_penalty_scale() const;
+  // What the last stable_step() / contact_stable_step() was made of (ω² in 1/s², without the
+  // driver's safety): the largest element eigenvalue, the largest contact-spring frequency²
+  // near contact, the assembled estimate × margin (StepBound::Assembled and converged; 0
+  // otherwise; the bound takes it only where it undercuts the element + contact sum) and the bulk-viscosity factor on 2/ω.
+  struct StepParts {
+    double element_omega2 = 0, contact_omega2 = 0, assembled_omega2 = 0, bulk_factor = 1;
+  };
+  const StepParts& step_parts() const;
+  // Diagnosis of the step (not used by the run): the assembled power-iteration estimate of
+  // the element matrices of the last stable_step() WITHOUT the contact springs, times the
+  // margin; its own warm-started iterate, so the run's estimates are untouched.
+  // StepBound::Assembled only (throws std::logic_error otherwise or before stable_step()).
+  double elements_only_assembled_omega2() const;
   // Largest committed point PEEQ of each ring.
   std::vector<double> max_peeq_per_ring() const;
 

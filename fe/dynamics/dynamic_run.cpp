@@ -93,6 +93,7 @@ class DynamicRun {
       res.statistics.step_limited_by = "half-step residual control (HAFTOL)";
     }
     arrival_statistics(res.statistics);
+    res.statistics.contact_penalty_scale = model_.contact_penalty_scale();
     res.mass_scaling = model_.mass_scaling();
     res.mass_scaling.element_mass_kg *= sym_;
     res.mass_scaling.added_mass_kg *= sym_;
@@ -238,6 +239,8 @@ class DynamicRun {
       if (!u.allFinite() || !v.allFinite())
         throw SolveFailure(fmt::format("dynamic run: non-finite state at t = {:.6g} s", d.time()));
       res.energy_balance_error = std::max(res.energy_balance_error, d.energy().relative_balance_error());
+      res.statistics.max_penetration_m =
+          std::max(res.statistics.max_penetration_m, model_.contact_forces().max_penetration_m);
       const double t = d.time();
       const double v_toward = -v(imp);
       const double ke_rest = d.energy().kinetic - 0.5 * mass_imp * v(imp) * v(imp);

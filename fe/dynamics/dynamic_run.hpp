@@ -80,6 +80,10 @@ struct DynamicStatistics {
   std::string deepest_refused_arrival_at;
   long admitted_contact_arrivals = 0;
   double deepest_admitted_arrival = 0;
+  // The deepest contact penetration over the accepted steps (m) and the penalty scale the
+  // contact springs used (ChainModel::contact_penalty_scale).
+  double max_penetration_m = 0;
+  double contact_penalty_scale = 0;
 };
 
 struct DynamicResult {

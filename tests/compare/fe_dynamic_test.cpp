@@ -469,3 +469,17 @@ TEST(FeDynamicInput, MassScalingKeys) {
   EXPECT_FALSE(fe_dynamic_summary(four, fe_dynamic_run_result(four, synthetic_result(four, {0.2, 0.2, 0.2, 0.2}, false)))
                    .contains("mass_scaling"));
 }
+
+TEST(FeDynamicInput, ContactPenaltyStepFractionKey) {
+  EXPECT_EQ(fe_chain_input(scene_variant("thesis_dynamic", {})).contact_penalty_step_fraction, 0.0);
+  const Scene s = scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\ncontact_penalty_step_fraction = 0.05"}});
+  EXPECT_DOUBLE_EQ(fe_chain_input(s).contact_penalty_step_fraction, 0.05);
+  for (const std::string value : {"-0.1", "0.6", "nan"}) {
+    try {
+      scene_variant("thesis_dynamic", {{"\\[fe\\]", "[fe]\ncontact_penalty_step_fraction = " + value}});
+      ADD_FAILURE() << value << " accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("contact_penalty_step_fraction"), std::string::npos) << e.what();
+    }
+  }
+}
