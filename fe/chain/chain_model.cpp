@@ -800,7 +800,9 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   std::swap(m.committed, m.trial);
   m.surface->commit();
   m.trial_fresh = false;
-  m.u_n = u;
+  // u_last equals u here; it serves only the freshness test above, which the next
+  // evaluate() re-arms by writing it, so it gives its buffer to u_n (no copy).
+  std::swap(m.u_n, m.u_last);
   // The next increment is described on this configuration (kinematics.hpp): the element
   // geometry is re-derived on x_n in the next element pass (Impl::elements).
   ++m.xn_epoch;

@@ -49,6 +49,8 @@ class DynamicSystem {
   virtual const Eigen::VectorXd& lumped_mass() const = 0;
   virtual Eigen::VectorXd initial_velocity() const = 0;
 
+  // evaluate() sizes and writes all of out.force (and sizes out.viscous_force): the explicit
+  // driver hands it the buffers of an earlier evaluation instead of fresh ones.
   // want_tangent: also assemble ∂f/∂u into tangent_system().matrix() (free dofs only; the
   // pattern holds the diagonal of every free dof, so a driver may add M/(βΔt²) there).
   virtual void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) = 0;

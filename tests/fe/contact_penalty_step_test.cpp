@@ -140,3 +140,31 @@ TEST(ContactPenaltyStep, BadFractionsAreNamed) {
     }
   }
 }
+
+TEST(StepParts, ElementsOnlyEstimateLeavesTheRunUntouched) {
+  // The diagnosis's own estimator (elements_only_assembled_omega2) must not move the run's
+  // warm-started estimate: two models, one asked for the diagnosis between its bounds, give
+  // the same steps bit for bit; the elements-only value lies under the element bound × the
+  // margin (the element eigenvalue inequality) and is not above the estimate with springs by
+  // more than the iteration's tolerance.
+  ChainInput in = pressed_chain(0);
+  in.step_bound = StepBound::Assembled;
+  ChainModel plain(in), asked(in);
+  const Eigen::VectorXd u = pressed(plain);
+  SystemEvaluation a, b;
+  plain.evaluate(u, false, a);
+  asked.evaluate(u, false, b);
+  for (int k = 0; k < 3; ++k) {
+    const double s_plain = plain.stable_step(u).step_s;
+    const double s_asked = asked.stable_step(u).step_s;
+    EXPECT_EQ(s_plain, s_asked) << k;
+    const double only = asked.elements_only_assembled_omega2();
+    const auto& parts = asked.step_parts();
+    EXPECT_GT(only, 0.0);
+    EXPECT_LE(only, in.step_bound_margin * parts.element_omega2 * (1 + 1e-12));
+    EXPECT_LE(only, parts.assembled_omega2 * (1 + 1e-3));
+    EXPECT_EQ(parts.bulk_factor, 1.0);
+  }
+  ChainModel element_bound(pressed_chain(0));
+  EXPECT_THROW(element_bound.elements_only_assembled_omega2(), std::logic_error);
+}
