@@ -92,7 +92,9 @@ TEST(ContactPenaltyStep, ContactSpringsCostAtMostTheFractionOfTheElementStep) {
       ChainModel capped(in);
       const double step = stable_step_at_press(capped);
       EXPECT_GE(step, (1 - phi) * element_step * (1 - 1e-12)) << "phi " << phi;
-      EXPECT_LT(capped.contact_penalty_scale(), 1.0);
+      // The default springs cost 10–20 % here: the cap binds at 5 and 10 %, not at 20 %.
+      if (phi < 0.15) EXPECT_LT(capped.contact_penalty_scale(), 1.0) << phi;
+      else EXPECT_EQ(capped.contact_penalty_scale(), 1.0) << phi;
       // The parts the bound reports: the springs near contact within the limit of the
       // largest element's ω².
       const auto& parts = capped.step_parts();
