@@ -49,6 +49,20 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   if (reduced && algebraic)
     throw std::invalid_argument(
         "run_hybrid: ida_reduced_state needs a system without algebraic components (IDACalcIC works on the whole state)");
+  // Absolute tolerances per component (the model's scales), if asked for.
+  std::vector<double> atol;
+  if (o.ida_component_tolerances.value_or(false)) {
+    const auto scale = system.absolute_tolerance_scale();  // empty: the scalar tolerance
+    if (!scale.empty() && scale.size() != n)
+      throw std::invalid_argument(fmt::format(
+          "run_hybrid: ida_component_tolerances needs one absolute_tolerance_scale per component ({} for {})",
+          scale.size(), n));
+    for (double f : scale) {
+      if (!(f > 0.0) || !std::isfinite(f))
+        throw std::invalid_argument(fmt::format("run_hybrid: absolute_tolerance_scale {} (need finite, > 0)", f));
+      atol.push_back(o.absolute_tolerance * f);
+    }
+  }
   // Whole state: one IDA. Reduced: one IDA per live size met so far (IDA cannot resize; the
   // restart after every event reinitialises whichever is used), all on the one live view.
   IdaLiveState live(system);
@@ -80,6 +94,12 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
       solver = std::make_unique<IdaSolver>(*dae, t, y0, yp0, so);
     }
     ida = solver.get();
+    if (!atol.empty()) {
+      const double scale = reduced ? live.tolerance_scale() : 1.0;
+      std::vector<double> a = reduced ? live.gather(atol) : atol;
+      for (double& x : a) x *= scale;
+      ida->set_tolerances(io.relative_tolerance * scale, a);
+    }
     if (from_last) ida->set_initial_step(*o.ida_restart_step_fraction * h_last);
     ida->reinit(t, y0, yp0, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
     if (algebraic) ida->calc_initial_conditions(t + ic_horizon);

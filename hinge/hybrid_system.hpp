@@ -52,6 +52,11 @@ class HybridSystem : public DaeSystem, public OdeSystem {
   // distinct; empty: all). The others must have a zero derivative there. Read at every
   // restart when HybridOptions::ida_reduced_state is on (hinge/ida_live_state.hpp).
   virtual std::vector<std::size_t> live_components() const { return {}; }
+
+  // Per-component factors on HybridOptions::absolute_tolerance (empty: 1 for all), for a
+  // state whose components differ in units or scale (m, m/s, J). Read by IDA at every restart
+  // when HybridOptions::ida_component_tolerances is on (IDASVtolerances).
+  virtual std::vector<double> absolute_tolerance_scale() const { return {}; }
 };
 
 enum class HybridIntegrator { Ida, Odeint };
@@ -75,6 +80,9 @@ struct HybridOptions {
   // norm is the whole state's. Unset, the model's choice (the driver: off). Not for systems
   // with algebraic components.
   std::optional<bool> ida_reduced_state;
+  // IDA's absolute tolerance per component: absolute_tolerance times the model's
+  // absolute_tolerance_scale(). Unset, the model's choice (the driver: off).
+  std::optional<bool> ida_component_tolerances;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

@@ -1,7 +1,8 @@
-// IDA on the live components only (hinge/ida_live_state.hpp, HybridOptions::ida_reduced_state):
-// on a toy hybrid model with a closed form, the reduced run equals the whole-state run and the
-// held components keep their values exactly; a wrong list of live components, or a system with
-// algebraic components, is a named error.
+// IDA on the live components only (hinge/ida_live_state.hpp, HybridOptions::ida_reduced_state)
+// and with absolute tolerances per component (HybridOptions::ida_component_tolerances): on a
+// toy hybrid model with a closed form, the reduced run equals the whole-state run and the held
+// components keep their values exactly; a wrong list of live components, a system with
+// algebraic components, or a wrong list of tolerance scales is a named error.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,6 +23,7 @@ class TakingTurns final : public HybridSystem {
   std::vector<std::size_t> live{0, 2};  // what live_components() reports in mode 0
   bool misreport = false;               // report the list for mode 0 in every mode
   bool drift = false;                   // the held counter creeps after t = 0.5 (a model bug)
+  std::vector<double> atol_scale;       // absolute_tolerance_scale()
   std::size_t size() const override { return 3; }
   std::size_t root_count() const override { return 1; }
   void rhs(double t, const double* y, double* f) override {
@@ -44,26 +46,28 @@ class TakingTurns final : public HybridSystem {
     if (misreport || mode_ == 0) return live;
     return {1, 2};
   }
+  std::vector<double> absolute_tolerance_scale() const override { return atol_scale; }
 
  private:
   int mode_ = 0, switches_ = 0;
 };
 
-HybridOptions ida_options(bool reduced) {
+HybridOptions ida_options(bool reduced, bool component_tolerances = false) {
   HybridOptions o;
   o.integrator = HybridIntegrator::Ida;
   o.relative_tolerance = 1e-10;
   o.absolute_tolerance = 1e-12;
   o.end_time = 10.0;
   o.ida_reduced_state = reduced;
+  o.ida_component_tolerances = component_tolerances;
   return o;
 }
 
 template <typename Error>
-std::string error_of(TakingTurns& m, bool reduced = true) {
+std::string error_of(TakingTurns& m, bool reduced = true, bool component_tolerances = false) {
   std::vector<double> y{0.0, 0.0, 0.0};
   try {
-    run_hybrid(m, 0.0, y, ida_options(reduced), {});
+    run_hybrid(m, 0.0, y, ida_options(reduced, component_tolerances), {});
   } catch (const Error& e) {
     return e.what();
   }
@@ -142,4 +146,37 @@ TEST(IdaLiveState, AlgebraicComponentsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("ida_reduced_state needs a system without algebraic"), std::string::npos)
         << e.what();
   }
+}
+
+// Absolute tolerances per component: scales of 1 are the scalar tolerance (the same run, on the
+// whole and on the live state), a looser one on a component costs fewer steps and stays inside
+// it; a list of the wrong length or a scale that is not positive is a named error.
+TEST(IdaLiveState, ComponentTolerances) {
+  for (bool reduced : {false, true}) {
+    std::vector<double> plain{0.0, 0.0, 0.0}, ones = plain;
+    TakingTurns a, b;
+    b.atol_scale = {1.0, 1.0, 1.0};
+    const auto ra = run_hybrid(a, 0.0, plain, ida_options(reduced), {});
+    const auto rb = run_hybrid(b, 0.0, ones, ida_options(reduced, true), {});
+    EXPECT_EQ(rb.statistics.steps, ra.statistics.steps) << reduced;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(ones[k], plain[k], 1e-12) << k;
+  }
+  const double ln2 = std::log(2.0);
+  std::vector<double> tight{0.0, 0.0, 0.0}, loose = tight;
+  TakingTurns a, b;
+  b.atol_scale = {1.0, 1.0, 1e4};  // the accumulator y_2 to 1e-8 instead of 1e-12
+  const auto ra = run_hybrid(a, 0.0, tight, ida_options(true), {});
+  const auto rb = run_hybrid(b, 0.0, loose, ida_options(true, true), {});
+  EXPECT_LT(rb.statistics.steps, ra.statistics.steps);
+  EXPECT_NEAR(loose[2], 3.0 * (1.0 - ln2), 1e-7);
+  EXPECT_NEAR(rb.end_time, 3.0 * ln2, 1e-8);
+
+  TakingTurns short_list;
+  short_list.atol_scale = {1.0, 1.0};
+  EXPECT_NE(error_of<std::invalid_argument>(short_list, true, true).find("one absolute_tolerance_scale per component (2 for 3)"),
+            std::string::npos);
+  TakingTurns zero;
+  zero.atol_scale = {1.0, 0.0, 1.0};
+  EXPECT_NE(error_of<std::invalid_argument>(zero, false, true).find("absolute_tolerance_scale 0 (need finite, > 0)"),
+            std::string::npos);
 }
