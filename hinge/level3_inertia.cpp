@@ -63,6 +63,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     motion_.assign(n_, RingMotion::Rigid);
     mech_.assign(n_, 0);
     own_cache_.assign(static_cast<std::size_t>(n_), OwnMass{});
+    load_cache_.assign(static_cast<std::size_t>(m_), SlotLoad{});
     for (int i = 0; i < n_; ++i) {
       mech_[i] = kM * i + kU;
       strength_.push_back(1.0 + tie_break * i);
@@ -88,7 +89,27 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   int vel(int i) const { return base_size_ + i; }
 
   // --- mechanics -------------------------------------------------------------------
-  double ring_load(const double* y, int j) const { return strength_[j / kM] * load(y, j); }
+  // Kept per mechanism slot for the crush it was evaluated at (load() reads y only there,
+  // crush_of(y, j)): between events only a crushing ring's current mechanism moves, and the
+  // root functions, called at every IDA step, re-evaluated the other ~20 slots' held loads
+  // (asin, cos, the E–C–B onset pose). Bypassed while an event changes the mechanism flags,
+  // ψ0 and the E–C–B tables the loads also depend on, and cleared after it (EventScope).
+  double ring_load(const double* y, int j) const {
+    if (in_event_) return strength_[j / kM] * load(y, j);
+    auto& c = load_cache_[static_cast<std::size_t>(j)];
+    const double crush = y[state(j)];
+    if (c.valid && c.crush == crush) return c.load;
+    c = {true, crush, strength_[j / kM] * load(y, j)};
+    return c.load;
+  }
+  struct EventScope {
+    explicit EventScope(Level3InertialChain& c) : chain(c) { chain.in_event_ = true; }
+    ~EventScope() {
+      chain.in_event_ = false;
+      for (auto& e : chain.load_cache_) e.valid = false;
+    }
+    Level3InertialChain& chain;
+  };
   // Ring i's admissible mechanism of least load with travel left (−1: none); E–C–B replaces
   // the bottom mechanism only when cheaper by half the massless chain's switch margin.
   int least(const double* y, int i) const {
@@ -312,6 +333,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   }
 
   EventAction on_event(double t, std::vector<double>& y, const std::vector<int>& fired) override {
+    const EventScope scope(*this);
     double* s = y.data();
     const double ke_before = kinetic(s);
     std::vector<char> loaded(n_, 0);
@@ -447,6 +469,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
 
   // First contact: the impactor's momentum M V shared by a plastic impact (Level 1).
   std::vector<double> initial_state() {
+    const EventScope scope(*this);
     std::vector<double> y(size(), 0.0);
     assemble(y.data());
     const Eigen::VectorXd p = Eigen::VectorXd::Constant(n_, in_.impactor_mass_kg * in_.impactor_velocity_m_s);
@@ -528,6 +551,12 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     double crush = std::numeric_limits<double>::quiet_NaN(), mu = 0.0, dmu = 0.0;
   };
   mutable std::vector<OwnMass> own_cache_;
+  struct SlotLoad {
+    bool valid = false;
+    double crush = 0.0, load = 0.0;
+  };
+  mutable std::vector<SlotLoad> load_cache_;  // ring_load() per mechanism slot
+  bool in_event_ = false;
   std::vector<double> f0_, f1_, yd_;  // jacobian(): f(y), f(y + inc e_k), the shifted state
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m0_, mm_;
