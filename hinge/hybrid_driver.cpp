@@ -49,19 +49,17 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   if (reduced && algebraic)
     throw std::invalid_argument(
         "run_hybrid: ida_reduced_state needs a system without algebraic components (IDACalcIC works on the whole state)");
-  // Absolute tolerances per component (the model's scales), if asked for.
+  // Absolute tolerances per component (the model's), if asked for.
   std::vector<double> atol;
   if (o.ida_component_tolerances.value_or(false)) {
-    const auto scale = system.absolute_tolerance_scale();  // empty: the scalar tolerance
-    if (!scale.empty() && scale.size() != n)
+    atol = system.absolute_tolerances(o.relative_tolerance, o.absolute_tolerance);  // empty: scalar
+    if (!atol.empty() && atol.size() != n)
       throw std::invalid_argument(fmt::format(
-          "run_hybrid: ida_component_tolerances needs one absolute_tolerance_scale per component ({} for {})",
-          scale.size(), n));
-    for (double f : scale) {
-      if (!(f > 0.0) || !std::isfinite(f))
-        throw std::invalid_argument(fmt::format("run_hybrid: absolute_tolerance_scale {} (need finite, > 0)", f));
-      atol.push_back(o.absolute_tolerance * f);
-    }
+          "run_hybrid: ida_component_tolerances needs one absolute tolerance per component ({} for {})",
+          atol.size(), n));
+    for (double a : atol)
+      if (!(a > 0.0) || !std::isfinite(a))
+        throw std::invalid_argument(fmt::format("run_hybrid: absolute tolerance {} (need finite, > 0)", a));
   }
   // Whole state: one IDA. Reduced: one IDA per live size met so far (IDA cannot resize; the
   // restart after every event reinitialises whichever is used), all on the one live view.

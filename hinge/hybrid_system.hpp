@@ -53,10 +53,11 @@ class HybridSystem : public DaeSystem, public OdeSystem {
   // restart when HybridOptions::ida_reduced_state is on (hinge/ida_live_state.hpp).
   virtual std::vector<std::size_t> live_components() const { return {}; }
 
-  // Per-component factors on HybridOptions::absolute_tolerance (empty: 1 for all), for a
-  // state whose components differ in units or scale (m, m/s, J). Read by IDA at every restart
-  // when HybridOptions::ida_component_tolerances is on (IDASVtolerances).
-  virtual std::vector<double> absolute_tolerance_scale() const { return {}; }
+  // IDA's absolute tolerance per component for the run's relative and absolute tolerances
+  // (empty: `absolute` for every component), for a state whose components differ in units or
+  // scale (m, m/s, J). Read at every restart when HybridOptions::ida_component_tolerances is
+  // on (IDASVtolerances).
+  virtual std::vector<double> absolute_tolerances(double /*relative*/, double /*absolute*/) const { return {}; }
 };
 
 enum class HybridIntegrator { Ida, Odeint };
@@ -80,8 +81,8 @@ struct HybridOptions {
   // norm is the whole state's. Unset, the model's choice (the driver: off). Not for systems
   // with algebraic components.
   std::optional<bool> ida_reduced_state;
-  // IDA's absolute tolerance per component: absolute_tolerance times the model's
-  // absolute_tolerance_scale(). Unset, the model's choice (the driver: off).
+  // IDA's absolute tolerance per component, the model's absolute_tolerances(). Unset, the
+  // model's choice (the driver: off).
   std::optional<bool> ida_component_tolerances;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;

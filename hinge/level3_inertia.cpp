@@ -282,18 +282,20 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     return live;
   }
 
-  // The tolerance is given in metres (crushes); the velocities take it per the time the
-  // impactor needs to cross one ring, d/V₀ (1e-10 m → ~1e-7 m/s at 45 m/s, not 1e-10 m/s: a
-  // ring starting from rest otherwise holds IDA's order-1 restart to ~1e-9 s steps), work
-  // and F per the collapse load P₀ (J = N·m, N = P₀/d per m).
-  std::vector<double> absolute_tolerance_scale() const override {
-    const double per_time = vref_ / d_;
-    std::vector<double> s(size(), 1.0);
-    s[1] = per_time;
-    s[2] = p0_ / d_;
-    s[3] = p0_;
-    for (int i = 0; i < n_; ++i) s[static_cast<std::size_t>(vel(i))] = per_time;
-    return s;
+  // The absolute tolerance is given in metres (crushes, the impactor's travel). A velocity
+  // is measured against the impact speed V₀ (relative × V₀), not its own value, which is zero
+  // when a ring starts from rest: the scalar 1e-10 m/s there held IDA's order-1 restarts to
+  // ~1e-9 s steps. Nor looser than the metres over the time the impactor takes to cross a
+  // ring, d/V₀. The work (J) likewise against ½MV₀² or P₀ × the metres; F (N, held) P₀/d.
+  std::vector<double> absolute_tolerances(double relative, double absolute) const override {
+    const double v = std::max(relative * vref_, absolute * vref_ / d_);
+    const double ke = 0.5 * in_.impactor_mass_kg * vref_ * vref_;
+    std::vector<double> a(size(), absolute);
+    a[1] = v;
+    a[2] = absolute * p0_ / d_;
+    a[3] = std::max(relative * ke, absolute * p0_);
+    for (int i = 0; i < n_; ++i) a[static_cast<std::size_t>(vel(i))] = v;
+    return a;
   }
 
   // --- events ----------------------------------------------------------------------

@@ -23,7 +23,7 @@ class TakingTurns final : public HybridSystem {
   std::vector<std::size_t> live{0, 2};  // what live_components() reports in mode 0
   bool misreport = false;               // report the list for mode 0 in every mode
   bool drift = false;                   // the held counter creeps after t = 0.5 (a model bug)
-  std::vector<double> atol_scale;       // absolute_tolerance_scale()
+  std::vector<double> atol_scale;       // absolute_tolerances(): these times the absolute
   std::size_t size() const override { return 3; }
   std::size_t root_count() const override { return 1; }
   void rhs(double t, const double* y, double* f) override {
@@ -46,7 +46,11 @@ class TakingTurns final : public HybridSystem {
     if (misreport || mode_ == 0) return live;
     return {1, 2};
   }
-  std::vector<double> absolute_tolerance_scale() const override { return atol_scale; }
+  std::vector<double> absolute_tolerances(double, double absolute) const override {
+    std::vector<double> a = atol_scale;
+    for (double& x : a) x *= absolute;
+    return a;
+  }
 
  private:
   int mode_ = 0, switches_ = 0;
@@ -173,10 +177,10 @@ TEST(IdaLiveState, ComponentTolerances) {
 
   TakingTurns short_list;
   short_list.atol_scale = {1.0, 1.0};
-  EXPECT_NE(error_of<std::invalid_argument>(short_list, true, true).find("one absolute_tolerance_scale per component (2 for 3)"),
+  EXPECT_NE(error_of<std::invalid_argument>(short_list, true, true).find("one absolute tolerance per component (2 for 3)"),
             std::string::npos);
   TakingTurns zero;
   zero.atol_scale = {1.0, 0.0, 1.0};
-  EXPECT_NE(error_of<std::invalid_argument>(zero, false, true).find("absolute_tolerance_scale 0 (need finite, > 0)"),
+  EXPECT_NE(error_of<std::invalid_argument>(zero, false, true).find("absolute tolerance 0 (need finite, > 0)"),
             std::string::npos);
 }

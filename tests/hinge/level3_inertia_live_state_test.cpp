@@ -3,7 +3,7 @@
 // rings' velocities and F leave IDA's vector at each restart. Against the whole-state IDA on
 // Test 30 welded at 27.7, 45 and 50 m/s (no wrap; wraps and E–C–B; ring 1 wrapping first):
 // final crush per ring, modes, events and the energy balance, at the bench's rtol 1e-8. The
-// absolute tolerance per component (velocities per d/V₀, work per P₀) against the scalar one
+// absolute tolerance per component (velocities against V₀, work against ½MV₀²) against the scalar one
 // and against Odeint. The massless chain, which sets neither, is bit-identical with them on.
 #include <gtest/gtest.h>
 
@@ -74,7 +74,7 @@ TEST(Level3InertiaLiveState, MasslessChainBitIdentical) {
   EXPECT_EQ(on.outcome.end_time, off.outcome.end_time);
 }
 
-// The absolute tolerance per component (Level3InertialChain::absolute_tolerance_scale): fewer
+// The absolute tolerance per component (Level3InertialChain::absolute_tolerances): fewer
 // steps (counted, not timed; 22–29 % measured), the result within the bar IDA and Odeint are
 // held to (1e-6 d per ring, same modes) against Odeint at the same tolerances, energy to 1e-6.
 TEST(Level3InertiaLiveState, ComponentTolerancesKeepTheResult) {
