@@ -66,7 +66,11 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   IdaLiveState live(system);
   std::map<std::size_t, std::unique_ptr<IdaSolver>> solvers;
   IdaSolver* ida = nullptr;
-  auto whole = [&](const std::vector<double>& s) { return reduced ? live.expand(s) : s; };
+  // IDA's state as the model's (the held components filled in).
+  auto pull = [&](std::vector<double>& out) {
+    if (reduced) out = live.expand(ida->y());
+    else out = ida->y();
+  };
   // IDACalcIC needs a first output time for its scale: one hundredth of the run.
   const double ic_horizon = 1e-2 * (o.end_time - t0);
   auto restart = [&](double t, const std::vector<double>& state, const std::vector<int>& fired) {
@@ -112,13 +116,17 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
     }
   };
   restart(t0, y, {});
-  if (sample) sample(t0, whole(ida->y()));
+  if (sample) {
+    std::vector<double> y0;
+    pull(y0);
+    sample(t0, y0);
+  }
 
   HybridOutcome out;
   long events = 0;
   while (true) {
     const auto s = step();
-    y = whole(ida->y());
+    pull(y);
     if (sample) sample(s.t, y);
     out.end_time = s.t;
     if (s.root_found) {
@@ -133,7 +141,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
         break;
       }
       restart(s.t, y, s.roots_found);
-      y = whole(ida->y());
+      pull(y);
       continue;
     }
     if (s.stop_time_reached || s.t >= o.end_time) break;
