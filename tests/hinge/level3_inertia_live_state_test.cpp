@@ -75,7 +75,7 @@ TEST(Level3InertiaLiveState, MasslessChainBitIdentical) {
 }
 
 // The absolute tolerance per component (Level3InertialChain::absolute_tolerances): fewer
-// steps (counted, not timed; 22–29 % measured), the result within the bar IDA and Odeint are
+// steps (counted, not timed; 29–38 % measured), the result within the bar IDA and Odeint are
 // held to (1e-6 d per ring, same modes) against Odeint at the same tolerances, energy to 1e-6.
 TEST(Level3InertiaLiveState, ComponentTolerancesKeepTheResult) {
   for (double v : {27.7, 45.0, 50.0}) {
