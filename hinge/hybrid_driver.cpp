@@ -1,9 +1,12 @@
 #include <cmath>
+#include <map>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "hybrid_system.hpp"
+#include "ida_live_state.hpp"
 #include "ida_solver.hpp"
 #include "odeint_integrator.hpp"
 
@@ -34,8 +37,6 @@ bool has_algebraic(const std::vector<double>& mask) {
 HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
                       const HybridOptions& o, const HybridSampler& sample) {
   const std::size_t n = system.size();
-  std::vector<double> yp(n);
-  system.rhs(t0, y.data(), yp.data());
   IdaOptions io;
   io.relative_tolerance = o.relative_tolerance;
   io.absolute_tolerance = o.absolute_tolerance;
@@ -44,26 +45,88 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   io.root_mask_tolerance = o.root_mask_tolerance;
   const bool algebraic = has_algebraic(system.differential_mask());
   io.suppress_algebraic_error_test = algebraic;
-  IdaSolver ida(system, t0, y, yp, io);
+  const bool reduced = o.ida_reduced_state.value_or(false);
+  if (reduced && algebraic)
+    throw std::invalid_argument(
+        "run_hybrid: ida_reduced_state needs a system without algebraic components (IDACalcIC works on the whole state)");
+  // Absolute tolerances per component (the model's), if asked for.
+  std::vector<double> atol;
+  if (o.ida_component_tolerances.value_or(false)) {
+    atol = system.absolute_tolerances(o.relative_tolerance, o.absolute_tolerance);  // empty: scalar
+    if (!atol.empty() && atol.size() != n)
+      throw std::invalid_argument(fmt::format(
+          "run_hybrid: ida_component_tolerances needs one absolute tolerance per component ({} for {})",
+          atol.size(), n));
+    for (double a : atol)
+      if (!(a > 0.0) || !std::isfinite(a))
+        throw std::invalid_argument(fmt::format("run_hybrid: absolute tolerance {} (need finite, > 0)", a));
+  }
+  // Whole state: one IDA. Reduced: one IDA per live size met so far (IDA cannot resize; the
+  // restart after every event reinitialises whichever is used), all on the one live view.
+  IdaLiveState live(system);
+  std::map<std::size_t, std::unique_ptr<IdaSolver>> solvers;
+  IdaSolver* ida = nullptr;
+  // IDA's state as the model's (the held components filled in).
+  auto pull = [&](std::vector<double>& out) {
+    if (reduced) out = live.expand(ida->y());
+    else out = ida->y();
+  };
   // IDACalcIC needs a first output time for its scale: one hundredth of the run.
   const double ic_horizon = 1e-2 * (o.end_time - t0);
   auto restart = [&](double t, const std::vector<double>& state, const std::vector<int>& fired) {
-    if (o.ida_restart_step_fraction.value_or(0.0) > 0.0 && !fired.empty())
-      ida.set_initial_step(*o.ida_restart_step_fraction * ida.last_step());
+    const bool from_last = o.ida_restart_step_fraction.value_or(0.0) > 0.0 && !fired.empty();
+    const double h_last = from_last ? ida->last_step() : 0.0;
     std::vector<double> deriv(n);
     system.rhs(t, state.data(), deriv.data());
-    ida.reinit(t, state, deriv, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
-    if (algebraic) ida.calc_initial_conditions(t + ic_horizon);
-    ida.set_stop_time(o.end_time);
+    DaeSystem* dae = &system;
+    std::vector<double> y0 = state, yp0 = deriv;
+    if (reduced) {
+      live.hold(system.live_components(), state, deriv);
+      dae = &live;
+      y0 = live.gather(state);
+      yp0 = live.gather(deriv);
+    }
+    auto& solver = solvers[y0.size()];
+    if (!solver) {
+      IdaOptions so = io;
+      if (reduced) {
+        so.relative_tolerance *= live.tolerance_scale();
+        so.absolute_tolerance *= live.tolerance_scale();
+      }
+      solver = std::make_unique<IdaSolver>(*dae, t, y0, yp0, so);
+    }
+    ida = solver.get();
+    if (!atol.empty()) {
+      const double scale = reduced ? live.tolerance_scale() : 1.0;
+      std::vector<double> a = reduced ? live.gather(atol) : atol;
+      for (double& x : a) x *= scale;
+      ida->set_tolerances(io.relative_tolerance * scale, a);
+    }
+    if (from_last) ida->set_initial_step(*o.ida_restart_step_fraction * h_last);
+    ida->reinit(t, y0, yp0, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
+    if (algebraic) ida->calc_initial_conditions(t + ic_horizon);
+    ida->set_stop_time(o.end_time);
+  };
+  auto step = [&] {
+    try {
+      return ida->step(o.end_time);
+    } catch (const IdaError&) {
+      if (!live.failure().empty()) throw std::logic_error(live.failure());  // the model's live list
+      throw;
+    }
   };
   restart(t0, y, {});
-  if (sample) sample(t0, ida.y());
+  if (sample) {
+    std::vector<double> y0;
+    pull(y0);
+    sample(t0, y0);
+  }
 
   HybridOutcome out;
   long events = 0;
   while (true) {
-    const auto s = ida.step(o.end_time);
-    y = ida.y();
+    const auto s = step();
+    pull(y);
     if (sample) sample(s.t, y);
     out.end_time = s.t;
     if (s.root_found) {
@@ -78,7 +141,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
         break;
       }
       restart(s.t, y, s.roots_found);
-      y = ida.y();
+      pull(y);
       continue;
     }
     if (s.stop_time_reached || s.t >= o.end_time) break;
@@ -87,10 +150,21 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
       break;
     }
   }
-  const auto st = ida.statistics();
+  IdaStatistics st;
+  long restarts = 0;
+  for (const auto& [size, solver] : solvers) {
+    const auto s = solver->statistics();
+    st.steps += s.steps;
+    st.error_test_failures += s.error_test_failures;
+    st.nonlinear_convergence_failures += s.nonlinear_convergence_failures;
+    st.residual_evaluations += s.residual_evaluations;
+    st.jacobian_evaluations += s.jacobian_evaluations;
+    st.nonlinear_iterations += s.nonlinear_iterations;
+    restarts += solver->restarts();
+  }
   out.statistics = {st.steps, st.error_test_failures + st.nonlinear_convergence_failures,
                     st.residual_evaluations, st.jacobian_evaluations, st.nonlinear_iterations,
-                    events, ida.restarts()};
+                    events, restarts};
   return out;
 }
 

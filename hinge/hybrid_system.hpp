@@ -47,6 +47,17 @@ class HybridSystem : public DaeSystem, public OdeSystem {
 
   // Called after every accepted step; true ends the run (e.g. the chain has come to rest).
   virtual bool finished(double /*t*/, const double* /*y*/) { return false; }
+
+  // The components that can move until the next event, in the current mode (ascending,
+  // distinct; empty: all). The others must have a zero derivative there. Read at every
+  // restart when HybridOptions::ida_reduced_state is on (hinge/ida_live_state.hpp).
+  virtual std::vector<std::size_t> live_components() const { return {}; }
+
+  // IDA's absolute tolerance per component for the run's relative and absolute tolerances
+  // (empty: `absolute` for every component), for a state whose components differ in units or
+  // scale (m, m/s, J). Read at every restart when HybridOptions::ida_component_tolerances is
+  // on (IDASVtolerances).
+  virtual std::vector<double> absolute_tolerances(double /*relative*/, double /*absolute*/) const { return {}; }
 };
 
 enum class HybridIntegrator { Ida, Odeint };
@@ -65,6 +76,14 @@ struct HybridOptions {
   // Odeint's event bisection stops at this width (s); unset, the model's choice (the driver:
   // 64 ulp of t, ~45 halvings of a step, each evaluating every root function).
   std::optional<double> odeint_event_time_tolerance;
+  // IDA on the live components only (HybridSystem::live_components, hinge/ida_live_state.hpp):
+  // the held ones leave IDA's vector at each restart, its tolerances scaled so that its error
+  // norm is the whole state's. Unset, the model's choice (the driver: off). Not for systems
+  // with algebraic components.
+  std::optional<bool> ida_reduced_state;
+  // IDA's absolute tolerance per component, the model's absolute_tolerances(). Unset, the
+  // model's choice (the driver: off).
+  std::optional<bool> ida_component_tolerances;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

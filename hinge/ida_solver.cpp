@@ -72,7 +72,7 @@ class BandSink final : public JacobianSink {
 struct IdaSolver::Impl {
   SUNContext context = nullptr;
   void* ida = nullptr;
-  N_Vector y = nullptr, yp = nullptr, id = nullptr;
+  N_Vector y = nullptr, yp = nullptr, id = nullptr, atol = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear_solver = nullptr;
   IdaOptions options;
@@ -84,6 +84,7 @@ struct IdaSolver::Impl {
     if (ida) IDAFree(&ida);
     if (linear_solver) SUNLinSolFree(linear_solver);
     if (matrix) SUNMatDestroy(matrix);
+    if (atol) N_VDestroy(atol);
     if (id) N_VDestroy(id);
     if (yp) N_VDestroy(yp);
     if (y) N_VDestroy(y);
@@ -241,6 +242,15 @@ void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector
 
 void IdaSolver::set_stop_time(double t_stop) {
   impl_->check(IDASetStopTime(impl_->ida, t_stop), "IDASetStopTime");
+}
+
+void IdaSolver::set_tolerances(double relative, const std::vector<double>& absolute) {
+  auto& m = *impl_;
+  if (absolute.size() != y_.size())
+    throw std::invalid_argument("IdaSolver::set_tolerances: one absolute tolerance per component");
+  if (!m.atol) m.atol = check_alloc(N_VNew_Serial(static_cast<sunindextype>(y_.size()), m.context), "N_VNew_Serial");
+  std::copy(absolute.begin(), absolute.end(), N_VGetArrayPointer(m.atol));
+  m.check(IDASVtolerances(m.ida, relative, m.atol), "IDASVtolerances");
 }
 
 void IdaSolver::set_initial_step(double h) {

@@ -80,6 +80,8 @@ class IdaSolver {
   const std::vector<int>& root_mask() const;
 
   void set_stop_time(double t_stop);
+  // Tolerances from the next step on: relative, and absolute per component (IDASVtolerances).
+  void set_tolerances(double relative, const std::vector<double>& absolute);
   // The first step IDA tries after the next (re)start (IDASetInitStep; 0: IDA's own estimate,
   // 0.001 of the way to tout cut to 0.5/‖y′‖, which at tight tolerances is ~1e-11 s).
   void set_initial_step(double h);

@@ -3,6 +3,7 @@
 //   ringcrush bench-level3                                   # Test 30 welded, 27.7 m/s
 //   ringcrush bench-level3 data/scenes/test30_welded.toml --repeat 51 --rtol 1e-8
 //   ringcrush bench-level3 --velocity 50 --shear-free         # travelling F, wrap selected
+//   /usr/bin/time ringcrush bench-level3 SCENE --only ida --repeat 201   # CPU per IDA run
 //
 // Median (and min/max) wall time of --repeat runs per integrator, no history kept, one core.
 #include <fmt/format.h>
@@ -23,6 +24,7 @@ struct BenchLevel3Options {
   double rtol = 1e-8;
   double velocity = -1.0;
   bool shear_free = false;  // travelling F (the shear-free trace is part of every run)
+  std::string only;         // "ida" or "odeint": that integrator alone (CPU time per run under load)
 };
 
 void run(const BenchLevel3Options& opt) {
@@ -34,6 +36,7 @@ void run(const BenchLevel3Options& opt) {
              opt.shear_free ? "shear_free" : "from the scene");
   fmt::print("{:>8} {:>12} {:>10} {:>10} {:>8} {:>8}\n", "path", "median_ms", "min_ms", "max_ms", "steps", "ring1");
   for (auto integ : {HingeIntegrator::Ida, HingeIntegrator::Odeint}) {
+    if (!opt.only.empty() && opt.only != (integ == HingeIntegrator::Ida ? "ida" : "odeint")) continue;
     HingeRunOptions o;
     o.level = "3";
     o.integrator = integ;
@@ -62,6 +65,8 @@ void add_command(CLI::App& app) {
   cmd->add_option("--rtol", o->rtol, "Relative tolerance (atol = rtol/100)")->check(CLI::Range(1e-12, 1e-2));
   cmd->add_option("--velocity", o->velocity, "Override the impact speed (m/s)");
   cmd->add_flag("--shear-free", o->shear_free, "Hinge F travelling by the shear-free condition");
+  cmd->add_option("--only", o->only, "One integrator only (ida | odeint), e.g. to time its CPU with /usr/bin/time")
+      ->check(CLI::IsMember({"ida", "odeint"}));
   cmd->callback([o] { run(*o); });
 }
 
