@@ -405,7 +405,26 @@ void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eige
   auto across = [&](int k) { return cubic.a[k][1] * tx - cubic.a[k][0] * ty; };
   cubic_range(along(0), along(1), along(2), along(3), poly.lo, poly.hi, pc.range[0], pc.range[1]);
   cubic_range(across(0), across(1), across(2), across(3), poly.lo, poly.hi, pc.range[2], pc.range[3]);
+  // Tangent bounds for the open-gap certificate: x'·t = A1 + 2 A2 f + 3 A3 f² over |f| ≤ F
+  // is at least A1 − 2|A2| F − 3|A3| F², and |x'·n| at most the sum of the magnitudes (no
+  // root to find; the pieces are nearly straight, A1 dominates).
+  const double F = std::max(std::abs(poly.lo), std::abs(poly.hi));
+  pc.along_min = along(1) - (2 * std::abs(along(2)) + 3 * std::abs(along(3)) * F) * F;
+  pc.across_max = std::abs(across(1)) + (2 * std::abs(across(2)) + 3 * std::abs(across(3)) * F) * F;
   pc.stamp = stamp_;
+}
+
+bool SurfaceContact::certified_open(const PieceCache& pc, double x, double y, double depth) {
+  // (x_s − x(f))·n(f) |x'(f)| = (x'·t)(v_s − v(f)) − (x'·n)(u_s − u(f)) in the chord frame
+  // (u along t, v along its left normal n): with x'·t ≥ a > 0 and v_s − v(f) ≥ dv > 0 it is at
+  // least dv a − du b, du the farthest the slave lies from the piece along the chord.
+  const double a = pc.along_min, b = pc.across_max;
+  if (!(a > 0)) return false;
+  const double along = x * pc.t[0] + y * pc.t[1], across = y * pc.t[0] - x * pc.t[1];
+  const double dv = across - pc.range[3];
+  if (!(dv > 0)) return false;
+  const double du = std::max(along - pc.range[0], pc.range[1] - along);
+  return dv * a - du * b > 1e-9 * depth * (a + b);
 }
 
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
@@ -428,6 +447,7 @@ void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
     r.hits.clear();
     r.near_omega2 = 0;
     r.near_node = -1;
+    r.spared = 0;
   }
   arrival_.begin();
 }
@@ -452,6 +472,8 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
     struct Near { double bound; int piece; };
     std::array<Near, 64> near;
     int count = 0;
+    // Every candidate within one depth certifies an open gap (header: "Open slaves").
+    bool open = spare_open_;
     auto project = [&](int q) {
       const PiecePolynomial& poly = poly_[pi][q];
       double f = poly.lo - 1.0, gap = 0;
@@ -487,8 +509,13 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
         if (du >= depth_ || dv >= depth_) continue;
         bound = std::sqrt(du * du + dv * dv);
       }
+      if (open) open = certified_open(pc, xs.x(), xs.y(), depth_);
       if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
       else project(q);
+    }
+    if (open && count > 0 && arrival_.remembered_piece(pi, s) < 0 && !(slave_omega2_[pi][s] > found.near_omega2)) {
+      ++found.spared;
+      continue;
     }
     while (count > 0) {
       int k = 0;
@@ -546,6 +573,12 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       h.weight = 1.0;
     }
   }
+}
+
+long SurfaceContact::spared_slaves() const {
+  long n = 0;
+  for (const auto& r : found_) n += r.spared;
+  return n;
 }
 
 void SurfaceContact::finish(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
