@@ -284,7 +284,7 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
 }
 
 SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth, double arrival_depth)
-    : passes_(std::move(passes)), depth_(depth), skin_(0.25 * depth) {
+    : passes_(std::move(passes)), depth_(depth), skin_(kSkin * depth) {
   if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
   arrival_ = ContactArrival(passes_, arrival_depth);
   for (const auto& p : passes_) {

@@ -173,12 +173,12 @@ TEST(ContactSearch, PrunedSearchIsTheFullSearch) {
 
 TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
   const Scene s = scene(2, true, 16);
-  const double depth = s.t.ring.element_depth, skin = 0.25 * depth;
+  const double depth = s.t.ring.element_depth, skin = SurfaceContact::kSkin * depth;
   SurfaceContact kept(s.passes, depth);
   std::vector<ContactContribution> out;
   SurfaceContactState st;
   // Ring 2 starts 3 depths below ring 1 (beyond every padded box: no candidates), then comes
-  // up by just under one skin per evaluation, then by 2.5 skins at once, into contact.
+  // up by just under one skin per evaluation, then by several skins at once, into contact.
   double dy = -3 * depth;
   kept.evaluate(configuration(s, 1, dy, 0.0, 0.0, 1), false, out, nullptr, st);
   auto ring_ring_candidates = [&] {
@@ -188,9 +188,11 @@ TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
     return n;
   };
   EXPECT_EQ(ring_ring_candidates(), 0u);
-  std::vector<double> moves(11, 0.99 * skin);  // to 0.28 of the wall apart
-  moves.push_back(2.5 * skin);                 // 0.35 of the wall into ring 1 at once
-  moves.push_back(0.99 * skin);                // 0.59 into it
+  // To 0.28 of the wall apart by just under one skin at a time, then 0.35 of the wall into
+  // ring 1 at once (0.625 of the wall: 5 skins of 0.125), then just under a skin further.
+  std::vector<double> moves(static_cast<std::size_t>(std::lround(2.7225 / (0.99 * skin / depth))), 0.99 * skin);
+  moves.push_back(0.625 * depth);
+  moves.push_back(0.99 * skin);
   int touching = 0;
   for (std::size_t k = 0; k < moves.size(); ++k) {
     dy += moves[k];
