@@ -51,6 +51,8 @@ class DynamicSystem {
 
   // want_tangent: also assemble ∂f/∂u into tangent_system().matrix() (free dofs only; the
   // pattern holds the diagonal of every free dof, so a driver may add M/(βΔt²) there).
+  // out.force and out.viscous_force are written whole, whatever they held on entry (the
+  // explicit driver hands back its previous step's buffers).
   virtual void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) = 0;
   virtual void commit(const Eigen::VectorXd& u) = 0;
   virtual SparseSystem& tangent_system() = 0;

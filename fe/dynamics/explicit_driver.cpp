@@ -110,8 +110,10 @@ void ExplicitDriver::step(double t_limit) {
   v_.noalias() += 0.5 * dt_ * a_;
   du_ = dt_ * v_;
   u_ += du_;
-  f_old_ = ev_.force;
-  q_old_ = ev_.viscous_force;
+  // The step's old forces are this evaluation's buffers, handed over (the evaluation below
+  // writes every entry of its own): no copy per step.
+  f_old_.swap(ev_.force);
+  q_old_.swap(ev_.viscous_force);
   sys_.set_increment_time(dt_);  // rate-dependent (bulk-viscous) forces: ε̇ = Δε/Δt
   sys_.evaluate(u_, false, ev_);
   ++evaluations_;
