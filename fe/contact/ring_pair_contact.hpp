@@ -123,10 +123,10 @@ class SurfaceContact {
  public:
   // Verlet skin of the candidate list, in element depths. Every evaluation applies the exact
   // test, so the skin sets only the cost: a list padded by 3 skins is refreshed and filtered
-  // on every evaluation and rebuilt when a node has moved a skin. Thesis scene, first 4 ms,
-  // one thread (perf, README "Session 11"): 0.25 → 0.125 took the piece refreshes and the
-  // candidate loop from 14.1 % to 10.0 % of the samples for 0.5 % more in rebuilds; 0.0625
-  // gained nothing more (the rebuilds doubled again).
+  // on every evaluation and rebuilt when a node has moved a skin. Thesis scene explicit, first
+  // 0.2 ms (callgrind, README "Session 11"): 0.25 → 0.125 halved the piece refreshes (204 → 100
+  // per evaluation) and cut the contact's instructions by 26 % for 35 rebuilds instead of 18;
+  // 0.0625 gained nothing more in a 4 ms perf profile (the rebuilds doubled again).
   static constexpr double kSkin = 0.125;
 
   // depth: element size through the wall (largest penetration counted, box padding).
