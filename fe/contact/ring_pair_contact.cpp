@@ -332,6 +332,10 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
   candidate_piece_.clear();
   busy_passes_.clear();
   std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
+  // Runs of kRun consecutive pieces share a box (the union of theirs): a slave outside it
+  // skips the run's pieces, in the same order otherwise, so the list is the same.
+  constexpr std::size_t kRun = 8;
+  std::vector<std::array<double, 4>> run_box;
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
     auto& start = start_[pi];
@@ -355,11 +359,23 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
       m_lo_x = std::min(m_lo_x, box[q][0]); m_hi_x = std::max(m_hi_x, box[q][1]);
       m_lo_y = std::min(m_lo_y, box[q][2]); m_hi_y = std::max(m_hi_y, box[q][3]);
     }
+    run_box.assign((p.pieces.size() + kRun - 1) / kRun, {1e300, -1e300, 1e300, -1e300});
+    for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+      auto& r = run_box[q / kRun];
+      r = {std::min(r[0], box[q][0]), std::max(r[1], box[q][1]), std::min(r[2], box[q][2]), std::max(r[3], box[q][3])};
+    }
     for (std::size_t s = 0; s < p.slaves.size(); ++s) {
       start[s] = static_cast<int>(candidate_piece_.size());
       const auto& xs = x[p.slaves[s]];
       const bool in_box = !(xs.x() < m_lo_x || xs.x() > m_hi_x || xs.y() < m_lo_y || xs.y() > m_hi_y);
       for (std::size_t q = 0; in_box && q < p.pieces.size(); ++q) {
+        if (q % kRun == 0) {
+          const auto& r = run_box[q / kRun];
+          if (xs.x() < r[0] || xs.x() > r[1] || xs.y() < r[2] || xs.y() > r[3]) {
+            q += kRun - 1;  // the loop's ++q moves to the next run
+            continue;
+          }
+        }
         const auto& b = box[q];
         if (xs.x() < b[0] || xs.x() > b[1] || xs.y() < b[2] || xs.y() > b[3]) continue;
         if (p.self) {
