@@ -284,7 +284,7 @@ std::vector<ContactPass> inner_wall_passes(const RingMesh& ring, const std::vect
 }
 
 SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth, double arrival_depth)
-    : passes_(std::move(passes)), depth_(depth), skin_(0.25 * depth) {
+    : passes_(std::move(passes)), depth_(depth), skin_(kSkin * depth) {
   if (!(depth > 0)) throw std::invalid_argument("SurfaceContact: element depth must be positive");
   arrival_ = ContactArrival(passes_, arrival_depth);
   for (const auto& p : passes_) {
@@ -332,6 +332,10 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
   candidate_piece_.clear();
   busy_passes_.clear();
   std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
+  // Runs of kRun consecutive pieces share a box (the union of theirs): a slave outside it
+  // skips the run's pieces, in the same order otherwise, so the list is the same.
+  constexpr std::size_t kRun = 8;
+  std::vector<std::array<double, 4>> run_box;
   for (std::size_t pi = 0; pi < passes_.size(); ++pi) {
     const ContactPass& p = passes_[pi];
     auto& start = start_[pi];
@@ -355,11 +359,23 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
       m_lo_x = std::min(m_lo_x, box[q][0]); m_hi_x = std::max(m_hi_x, box[q][1]);
       m_lo_y = std::min(m_lo_y, box[q][2]); m_hi_y = std::max(m_hi_y, box[q][3]);
     }
+    run_box.assign((p.pieces.size() + kRun - 1) / kRun, {1e300, -1e300, 1e300, -1e300});
+    for (std::size_t q = 0; q < p.pieces.size(); ++q) {
+      auto& r = run_box[q / kRun];
+      r = {std::min(r[0], box[q][0]), std::max(r[1], box[q][1]), std::min(r[2], box[q][2]), std::max(r[3], box[q][3])};
+    }
     for (std::size_t s = 0; s < p.slaves.size(); ++s) {
       start[s] = static_cast<int>(candidate_piece_.size());
       const auto& xs = x[p.slaves[s]];
       const bool in_box = !(xs.x() < m_lo_x || xs.x() > m_hi_x || xs.y() < m_lo_y || xs.y() > m_hi_y);
       for (std::size_t q = 0; in_box && q < p.pieces.size(); ++q) {
+        if (q % kRun == 0) {
+          const auto& r = run_box[q / kRun];
+          if (xs.x() < r[0] || xs.x() > r[1] || xs.y() < r[2] || xs.y() > r[3]) {
+            q += kRun - 1;  // the loop's ++q moves to the next run
+            continue;
+          }
+        }
         const auto& b = box[q];
         if (xs.x() < b[0] || xs.x() > b[1] || xs.y() < b[2] || xs.y() > b[3]) continue;
         if (p.self) {
@@ -405,7 +421,26 @@ void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eige
   auto across = [&](int k) { return cubic.a[k][1] * tx - cubic.a[k][0] * ty; };
   cubic_range(along(0), along(1), along(2), along(3), poly.lo, poly.hi, pc.range[0], pc.range[1]);
   cubic_range(across(0), across(1), across(2), across(3), poly.lo, poly.hi, pc.range[2], pc.range[3]);
+  // Tangent bounds for the open-gap certificate: x'·t = A1 + 2 A2 f + 3 A3 f² over |f| ≤ F
+  // is at least A1 − 2|A2| F − 3|A3| F², and |x'·n| at most the sum of the magnitudes (no
+  // root to find; the pieces are nearly straight, A1 dominates).
+  const double F = std::max(std::abs(poly.lo), std::abs(poly.hi));
+  pc.along_min = along(1) - (2 * std::abs(along(2)) + 3 * std::abs(along(3)) * F) * F;
+  pc.across_max = std::abs(across(1)) + (2 * std::abs(across(2)) + 3 * std::abs(across(3)) * F) * F;
   pc.stamp = stamp_;
+}
+
+bool SurfaceContact::certified_open(const PieceCache& pc, double x, double y, double depth) {
+  // (x_s − x(f))·n(f) |x'(f)| = (x'·t)(v_s − v(f)) − (x'·n)(u_s − u(f)) in the chord frame
+  // (u along t, v along its left normal n): with x'·t ≥ a > 0 and v_s − v(f) ≥ dv > 0 it is at
+  // least dv a − du b, du the farthest the slave lies from the piece along the chord.
+  const double a = pc.along_min, b = pc.across_max;
+  if (!(a > 0)) return false;
+  const double along = x * pc.t[0] + y * pc.t[1], across = y * pc.t[0] - x * pc.t[1];
+  const double dv = across - pc.range[3];
+  if (!(dv > 0)) return false;
+  const double du = std::max(along - pc.range[0], pc.range[1] - along);
+  return dv * a - du * b > 1e-9 * depth * (a + b);
 }
 
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
@@ -428,6 +463,7 @@ void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
     r.hits.clear();
     r.near_omega2 = 0;
     r.near_node = -1;
+    r.spared = 0;
   }
   arrival_.begin();
 }
@@ -452,6 +488,8 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
     struct Near { double bound; int piece; };
     std::array<Near, 64> near;
     int count = 0;
+    // Every candidate within one depth certifies an open gap (header: "Open slaves").
+    bool open = spare_open_;
     auto project = [&](int q) {
       const PiecePolynomial& poly = poly_[pi][q];
       double f = poly.lo - 1.0, gap = 0;
@@ -487,8 +525,13 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
         if (du >= depth_ || dv >= depth_) continue;
         bound = std::sqrt(du * du + dv * dv);
       }
+      if (open) open = certified_open(pc, xs.x(), xs.y(), depth_);
       if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
       else project(q);
+    }
+    if (open && count > 0 && arrival_.remembered_piece(pi, s) < 0 && !(slave_omega2_[pi][s] > found.near_omega2)) {
+      ++found.spared;
+      continue;
     }
     while (count > 0) {
       int k = 0;
@@ -546,6 +589,12 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       h.weight = 1.0;
     }
   }
+}
+
+long SurfaceContact::spared_slaves() const {
+  long n = 0;
+  for (const auto& r : found_) n += r.spared;
+  return n;
 }
 
 void SurfaceContact::finish(const std::vector<Eigen::Vector2d>& x, bool want_tangent,

@@ -26,6 +26,17 @@
 // are formed once per evaluation, whichever slaves ask. The closest owned piece, and so every
 // contribution, is bitwise that of projecting every slave on every piece (test).
 //
+// Open slaves (issue 4 performance; README "Session 11"): most listed slaves do not
+// penetrate, and were projected only to learn it and whether they are within one depth (the
+// contact-spring bound, near_omega2). On a piece whose tangent runs forward along its chord
+// (x'·t ≥ a > 0, |x'·n| ≤ b over the piece, t and n the chord frame) a slave lying dv beyond
+// the curve's range across the chord and at most du from it along the chord has, at any point
+// x(f) where a projection can end, (x_s − x(f))·n(f) |x'| ≥ dv a − du b (n(f) the left unit
+// normal): the gap is positive if dv a − du b > 0. A slave whose every candidate piece within
+// one depth certifies this, that has no remembered pair, and whose ω² does not exceed the
+// largest already found in its pass (so whether it is near changes nothing), adds nothing and
+// changes nothing: it is not projected (bitwise the full search; test).
+//
 // Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
 // refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
 // acting past the reach until its gap opens, its neighbourhood of pieces deciding over the
@@ -110,6 +121,14 @@ struct SurfaceContactState {
 
 class SurfaceContact {
  public:
+  // Verlet skin of the candidate list, in element depths. Every evaluation applies the exact
+  // test, so the skin sets only the cost: a list padded by 3 skins is refreshed and filtered
+  // on every evaluation and rebuilt when a node has moved a skin. Thesis scene explicit, first
+  // 0.2 ms (callgrind, README "Session 11"): 0.25 → 0.125 halved the piece refreshes (204 → 100
+  // per evaluation) and cut the contact's instructions by 26 % for 35 rebuilds instead of 18;
+  // 0.0625 gained nothing more in a 4 ms perf profile (the rebuilds doubled again).
+  static constexpr double kSkin = 0.125;
+
   // depth: element size through the wall (largest penetration counted, box padding).
   // arrival_depth: deepest first sight at which a pair may start acting (m; contact_arrival.hpp);
   // without it the reach, so only the memory acts (a pair keeps acting past the reach).
@@ -134,6 +153,11 @@ class SurfaceContact {
   void search(std::size_t pass, const std::vector<Eigen::Vector2d>& x);
   void finish(const std::vector<Eigen::Vector2d>& x, bool want_tangent, std::vector<ContactContribution>& out,
               std::vector<std::pair<int, double>>* pressure, SurfaceContactState& state) const;
+  // Slaves of the last evaluation whose projections were spared because none of their
+  // candidate pieces can give them a negative gap (certified_open(); all passes).
+  long spared_slaves() const;
+  // Off: every listed slave is projected (the reference path of the tests); on by default.
+  void set_spare_open_slaves(bool on) { spare_open_ = on; }
   // Passes that have candidates in the current list (the others find nothing), ascending.
   const std::vector<int>& busy_passes() const { return busy_passes_; }
   // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
@@ -183,8 +207,14 @@ class SurfaceContact {
     double box[4];          // x–y box of the curve (symmetry-plane pieces)
     double t[2];            // chord direction (unit)
     double range[4];        // lo, hi of x·t; lo, hi of x·n over the piece
+    // Bounds of the tangent x'(f) in the chord frame over the piece: x'·t ≥ along_min,
+    // |x'·n| ≤ across_max (the certificate of an open gap, certified_open()).
+    double along_min, across_max;
     unsigned stamp = 0;
   };
+  // Whether a slave at (x, y) provably has a positive gap wherever its projection on the
+  // piece ends (header: "Open slaves"); 1e-9 depth of margin over the rounding.
+  static bool certified_open(const PieceCache& pc, double x, double y, double depth);
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
   std::vector<int> busy_passes_;
@@ -200,8 +230,10 @@ class SurfaceContact {
     std::vector<Hit> hits;
     double near_omega2 = 0;
     int near_node = -1;
+    long spared = 0;  // slaves not projected (certified open)
   };
   std::vector<PassFound> found_;
+  bool spare_open_ = true;
   ContactArrival arrival_;
 };
 

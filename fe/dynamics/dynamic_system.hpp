@@ -53,6 +53,8 @@ class DynamicSystem {
   // driver hands it the buffers of an earlier evaluation instead of fresh ones.
   // want_tangent: also assemble ∂f/∂u into tangent_system().matrix() (free dofs only; the
   // pattern holds the diagonal of every free dof, so a driver may add M/(βΔt²) there).
+  // out.force and out.viscous_force are written whole, whatever they held on entry (the
+  // explicit driver hands back its previous step's buffers).
   virtual void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) = 0;
   virtual void commit(const Eigen::VectorXd& u) = 0;
   virtual SparseSystem& tangent_system() = 0;

@@ -173,12 +173,12 @@ TEST(ContactSearch, PrunedSearchIsTheFullSearch) {
 
 TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
   const Scene s = scene(2, true, 16);
-  const double depth = s.t.ring.element_depth, skin = 0.25 * depth;
+  const double depth = s.t.ring.element_depth, skin = SurfaceContact::kSkin * depth;
   SurfaceContact kept(s.passes, depth);
   std::vector<ContactContribution> out;
   SurfaceContactState st;
   // Ring 2 starts 3 depths below ring 1 (beyond every padded box: no candidates), then comes
-  // up by just under one skin per evaluation, then by 2.5 skins at once, into contact.
+  // up by just under one skin per evaluation, then by several skins at once, into contact.
   double dy = -3 * depth;
   kept.evaluate(configuration(s, 1, dy, 0.0, 0.0, 1), false, out, nullptr, st);
   auto ring_ring_candidates = [&] {
@@ -188,9 +188,11 @@ TEST(ContactSearch, FastApproachAcrossTheSkinIsNeverMissed) {
     return n;
   };
   EXPECT_EQ(ring_ring_candidates(), 0u);
-  std::vector<double> moves(11, 0.99 * skin);  // to 0.28 of the wall apart
-  moves.push_back(2.5 * skin);                 // 0.35 of the wall into ring 1 at once
-  moves.push_back(0.99 * skin);                // 0.59 into it
+  // To 0.28 of the wall apart by just under one skin at a time, then 0.35 of the wall into
+  // ring 1 at once (0.625 of the wall: 5 skins of 0.125), then just under a skin further.
+  std::vector<double> moves(static_cast<std::size_t>(std::lround(2.7225 / (0.99 * skin / depth))), 0.99 * skin);
+  moves.push_back(0.625 * depth);
+  moves.push_back(0.99 * skin);
   int touching = 0;
   for (std::size_t k = 0; k < moves.size(); ++k) {
     dy += moves[k];
@@ -365,4 +367,70 @@ TEST(ContactSearch, ChainContactDealtToTwoThreadsIsTheOneThreadContact) {
     EXPECT_GT(ca.self_n, 0.0) << where;
     EXPECT_GT(ca.impactor_n, 0.0) << where;
   }
+}
+
+// Open slaves (ring_pair_contact.hpp): a slave whose every candidate piece within one depth
+// certifies a positive gap, that has no remembered pair and whose ω² does not exceed the
+// largest already found in its pass, is not projected. Ring 2 pushed into ring 1 and pulled
+// back out, ring 3's inner wall through itself, every node jittered (random configurations),
+// random nodal masses (so that the slaves' ω² differ and the contact-spring bound's first
+// maximum moves), committed after every evaluation (so that remembered pairs act and then
+// open): the sparing search is bitwise the search that projects every listed slave and the
+// full search — contributions, pressures, every sum and maximum of the state, the spring
+// bound (near_omega2, near_node), the arrival memory — and it did spare slaves.
+TEST(ContactSearch, SparedOpenSlavesChangeNothing) {
+  long spared = 0, spared_by_reference = 0;
+  int touching = 0, remembered = 0;
+  for (bool half : {true, false}) {
+    const Scene s = scene(3, half, 48);
+    const double depth = s.t.ring.element_depth;
+    std::mt19937 gen(half ? 7 : 8);
+    std::uniform_real_distribution<double> unit(0.5, 1.5);
+    Eigen::VectorXd mass(2 * static_cast<Eigen::Index>(s.t.mesh.nodes.size()));
+    for (Eigen::Index i = 0; i < mass.size(); ++i) mass(i) = 1e-3 * unit(gen);
+    SurfaceContact sparing(s.passes, depth), every(s.passes, depth);
+    every.set_spare_open_slaves(false);
+    sparing.set_mass(mass);
+    every.set_mass(mass);
+    // Ring 2's lift into ring 1 (depths): in to 0.45 of the wall, then out to 0.3 apart.
+    const std::vector<double> lift = {-0.30, -0.10, 0.05, 0.15, 0.25, 0.35, 0.45, 0.30, 0.10, -0.05, -0.30};
+    for (std::size_t k = 0; k < lift.size(); ++k) {
+      const std::string where = (half ? "half rings, move " : "full rings, move ") + std::to_string(k);
+      const auto x = configuration(s, 1, lift[k] * depth, 0.04 * static_cast<double>(k) * depth,
+                                   (k % 3 == 0 ? 0.15 : 0.05) * depth, static_cast<unsigned>(100 * k + 1));
+      std::vector<ContactContribution> a, b;
+      std::vector<std::pair<int, double>> pa, pb;
+      SurfaceContactState sa, sb;
+      sparing.evaluate(x, false, a, &pa, sa);
+      every.evaluate(x, false, b, &pb, sb);
+      spared += sparing.spared_slaves();
+      spared_by_reference += every.spared_slaves();
+      expect_same(a, b, where);
+      if (k == 0) expect_same(a, full_search(s.passes, depth, x), where + " (full search)");
+      EXPECT_EQ(pa, pb) << where;
+      EXPECT_EQ(sa.energy, sb.energy) << where;
+      EXPECT_EQ(sa.ring_ring_force, sb.ring_ring_force) << where;
+      EXPECT_EQ(sa.self_force, sb.self_force) << where;
+      EXPECT_EQ(sa.max_penetration, sb.max_penetration) << where;
+      EXPECT_EQ(sa.deepest_node, sb.deepest_node) << where;
+      EXPECT_EQ(sa.active, sb.active) << where;
+      EXPECT_EQ(sa.near_omega2, sb.near_omega2) << where;
+      EXPECT_EQ(sa.near_node, sb.near_node) << where;
+      EXPECT_GT(sa.near_omega2, 0.0) << where;
+      if (sa.ring_ring_force > 0) ++touching;
+      sparing.commit();
+      every.commit();
+      EXPECT_EQ(sparing.arrival().admitted(), every.arrival().admitted()) << where;
+      EXPECT_EQ(sparing.arrival().refused(), every.arrival().refused()) << where;
+      for (std::size_t p = 0; p < s.passes.size(); ++p)
+        for (std::size_t sl = 0; sl < s.passes[p].slaves.size(); ++sl) {
+          EXPECT_EQ(sparing.arrival().remembered_piece(p, sl), every.arrival().remembered_piece(p, sl)) << where;
+          if (every.arrival().remembered_piece(p, sl) >= 0) ++remembered;
+        }
+    }
+  }
+  EXPECT_GE(touching, 8);      // ring↔ring contact acted on the way in and out
+  EXPECT_GT(remembered, 50);   // and was remembered (the spared slaves have no memory)
+  EXPECT_GT(spared, 100);      // slaves were spared (173 of 1 246 ring↔ring slaves): not vacuous
+  EXPECT_EQ(spared_by_reference, 0);
 }

@@ -116,10 +116,12 @@ TEST(RingPairContact, CandidateListGivesTheBruteForceResult) {
   std::vector<ContactContribution> out;
   SurfaceContactState st;
   // Build the list at a first configuration, then move every node by less than the skin
-  // (0.25 of the wall depth, 0.4 mm).
+  // (SurfaceContact::kSkin = 0.125 of the wall depth, 0.2 mm): at most 0.05 mm across and
+  // 0.1 + 0.05 mm up.
+  ASSERT_GT(SurfaceContact::kSkin * s.t.ring.element_depth, std::hypot(0.05e-3, 0.15e-3));
   stale.evaluate(positions(s.t, 1, 0.25e-3, 0.0, 2), false, out, nullptr, st);
   const long builds = stale.rebuilds();
-  const auto x = positions(s.t, 1, 0.35e-3, 0.1e-3, 3);
+  const auto x = positions(s.t, 1, 0.35e-3, 0.05e-3, 3);
   out.clear();
   stale.evaluate(x, true, out, nullptr, st);
   EXPECT_EQ(stale.rebuilds(), builds) << "moved less than the skin: no rebuild";
