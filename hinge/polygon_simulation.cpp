@@ -26,6 +26,8 @@ class Recorder {
     auto& h = out_.history;
     const double f = chain_.structure_factor();
     const auto e = chain_.energies(t, y);
+    out_.max_penetration_m = std::max(out_.max_penetration_m, chain_.max_penetration_last());
+    out_.max_membrane_strain = std::max(out_.max_membrane_strain, chain_.max_membrane_strain_last());
     h.time_s.push_back(t);
     h.impactor_displacement_m.push_back(chain_.impactor_position(t, y));
     const double v = chain_.impactor_velocity(t, y);
