@@ -71,9 +71,10 @@ struct PolygonChainInput {
   // Membrane bars: k_m = scale · E t L / ℓ0 (the penalties above stay on the unscaled
   // E t L / ℓ0). 1 is the section's EA. Below 1 it is a numerical softening of the hoop
   // stretch, as the penalties are numerical: the bar mode 2c/ℓ0 bounds the central
-  // difference's step, and a thin ring crushes by bending — EA → s EA adds α/s, α = t²/12R²,
-  // to the hoop-stretch term of the diametral compliance (Roark's thin ring; ≈ 0.5 % at
-  // s = 1/4, 7 % at 1/64 on Test 30's ring; tests/hinge/polygon_stiff_term_scale_test.cpp).
+  // difference's step, and a thin ring crushes by bending: EA → s EA multiplies the hoop-stretch
+  // term π R/(4 EA) of the diametral compliance by 1/s, next to the bending term
+  // (π/4 − 2/π) R³/EI (THEORY §1.1) — the Test 30 ring's elastic stiffness falls by 0.4 % at
+  // s = 1/4, 2.5 % at 1/16, 10 % at 1/64 (tests/hinge/polygon_stiff_term_scale_test.cpp).
   // All three scales must be positive and finite.
   double membrane_stiffness_scale = 1.0;
   double contact_damping_s_per_m = 0.05;
