@@ -67,6 +67,7 @@ struct PolygonChainInput {
   // Contact: k_n = scale · E t L / ℓ0 per node; Hunt–Crossley damping f = k p (1 + χ ṗ),
   // clipped at zero (no adhesion), χ in s/m.
   double contact_stiffness_scale = 1.0;
+  double contact_damping_s_per_m = 0.05;
 
   // Membrane bars: k_m = scale · E t L / ℓ0 (the penalties above stay on the unscaled
   // E t L / ℓ0). 1 is the section's EA. Below 1 it is a numerical softening of the hoop
@@ -77,7 +78,6 @@ struct PolygonChainInput {
   // s = 1/4, 2.5 % at 1/16, 10 % at 1/64 (tests/hinge/polygon_stiff_term_scale_test.cpp).
   // All three scales must be positive and finite.
   double membrane_stiffness_scale = 1.0;
-  double contact_damping_s_per_m = 0.05;
 
   // Impactor (full mass; the half model carries half of it) and far end.
   double impactor_mass_kg = 0.257;
@@ -298,7 +298,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   struct Tally {
     double plastic_power = 0, dissipation = 0, damping = 0, elastic = 0, contact_energy = 0;
     double impactor_force = 0, target_force = 0;
-    double max_penetration = 0, max_bar_strain = 0;  // recording evaluations (energies) only
+    double max_penetration = 0, max_bar_strain = 0;  // kept by recording evaluations (energies)
   };
   // polygon_ring_forces.cpp: hinges, membrane bars, flow law, node rows.
   void ring_forces(const double* y, double* phi, bool record, Tally& tally);
