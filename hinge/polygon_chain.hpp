@@ -195,6 +195,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // target.
   double impactor_force(double t, const double* y);
   double target_force(double t, const double* y);
+  // The same two forces from the last evaluation (energies() at a sample), without evaluating
+  // again: the forces do not depend on whether an evaluation records its pairs.
+  double impactor_force_last() const { return structure_factor() * last_impactor_force_; }
+  double target_force_last() const { return structure_factor() * last_target_force_; }
   double impactor_position(double t, const double* y) const;  // displacement from start, + down
   double impactor_velocity(double t, const double* y) const;  // + toward the chain
   // Factor from the modelled structure to the full one (2 for the half model).
