@@ -25,6 +25,14 @@ hinge::PolygonJoint joint_of(JointType j) {
 
 }  // namespace
 
+Level2Settings level2_settings(const Scene& scene) {
+  Level2Settings s;
+  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale;
+  s.contact_stiffness_scale *= scene.hinge.level2_penalty_stiffness_scale;
+  s.tie_stiffness_scale *= scene.hinge.level2_penalty_stiffness_scale;
+  return s;
+}
+
 hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& s) {
   const auto& rings = scene.rings;
   const auto& mat = rings.material;
@@ -57,6 +65,7 @@ hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings&
   in.plate_thickness_m = scene.joints.plate_thickness_m;
   in.tie_stiffness_scale = s.tie_stiffness_scale;
   in.contact_stiffness_scale = s.contact_stiffness_scale;
+  in.membrane_stiffness_scale = s.membrane_stiffness_scale;
   in.contact_damping_s_per_m = s.contact_damping_s_per_m;
   in.membrane_damping_ratio = s.membrane_damping_ratio;
   in.hinge_damping_ratio = s.hinge_damping_ratio;
@@ -288,6 +297,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"contact_stiffness_scale", s.contact_stiffness_scale},
         {"contact_damping_s_per_m", s.contact_damping_s_per_m},
         {"tie_stiffness_scale", s.tie_stiffness_scale},
+        {"membrane_stiffness_scale", s.membrane_stiffness_scale},
         {"membrane_damping_ratio", s.membrane_damping_ratio},
         {"hinge_damping_ratio", s.hinge_damping_ratio},
         {"velocity_tolerance_factor", s.velocity_tolerance_factor},
@@ -307,7 +317,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
 }
 
 RunResult run_hinge_level2(const Scene& scene, const HingeRunOptions& options) {
-  return run_level2(scene, options).result;
+  return run_level2(scene, options, level2_settings(scene)).result;
 }
 
 }  // namespace ringcrush::compare

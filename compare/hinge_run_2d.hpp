@@ -25,6 +25,12 @@ struct Level2Settings {
   double contact_stiffness_scale = 1.0;   // × E t L / ℓ0 per node
   double contact_damping_s_per_m = 0.05;  // Hunt–Crossley χ
   double tie_stiffness_scale = 1.0;       // welded ties as penalty springs × E t L / ℓ0
+  // Membrane bars' EA × this (PolygonChainInput::membrane_stiffness_scale). With the two
+  // penalty scales above, the stiff terms that set the central difference's step; the scene's
+  // [hinge] level2_membrane_stiffness_scale and level2_penalty_stiffness_scale (contact and
+  // ties) set them (level2_settings below), bench-hinge2 --membrane-scale / --penalty-scale
+  // override. README "Level 2: softer stiff terms".
+  double membrane_stiffness_scale = 1.0;
   double membrane_damping_ratio = 1.0;    // Kelvin–Voigt, see PolygonChainInput
   double hinge_damping_ratio = 1.0;
   double output_interval_s = 2e-5;        // history and shape samples
@@ -79,6 +85,9 @@ struct Level2Settings {
   double static_speed_m_s = 1.0;
   double static_mass_damping_per_s = 200.0;
 };
+
+// The defaults above with what the scene's [hinge] table carries (the stiff-term scales).
+Level2Settings level2_settings(const Scene& scene);
 
 hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& settings = {});
 

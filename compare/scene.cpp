@@ -10,6 +10,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <toml++/toml.h>
 
 namespace ringcrush::compare {
@@ -418,6 +419,11 @@ Scene parse_scene(const std::string& text, const std::string& file) {
                 (h.redwood_alpha >= 1 && h.redwood_alpha <= 4),
             r, "hardening_length", "\"redwood_fit\" is fitted for redwood_alpha in [1, 4]");
     h.nodes_per_ring = static_cast<int>(r.integer("nodes_per_ring", h.nodes_per_ring));
+    for (auto [key, value] : {std::pair{"level2_membrane_stiffness_scale", &h.level2_membrane_stiffness_scale},
+                              std::pair{"level2_penalty_stiffness_scale", &h.level2_penalty_stiffness_scale}}) {
+      *value = r.number(key, *value);
+      require(*value > 0 && *value <= 1, r, key, fmt::format("{} must lie in (0, 1] (1: the unscaled model)", *value));
+    }
     h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
         "level3_hinge_f",
         {{"least_onset_load", HingeSettings::Level3HingeF::LeastOnsetLoad},

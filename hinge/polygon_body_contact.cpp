@@ -132,6 +132,7 @@ void PolygonChain::body_body_contact(double t, const double* y, double* phi, Tal
     }
     tally.dissipation += diss;
     tally.contact_energy += 0.5 * k_n_ * pen * pen;
+    tally.max_penetration = std::max(tally.max_penetration, pen);
     const bool upper_free = !(upper == 0 && in_.driven_impactor);
     if (upper_free) phi[body_offset(upper) + 1] += f;
     if (upper == 0) tally.impactor_force += f;

@@ -42,6 +42,10 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   require(in_.joint != PolygonJoint::Plates || in_.plate_thickness_m > 0,
           "plates need a thickness");
   require(in_.driven_impactor || in_.impactor_mass_kg > 0, "impactor mass must be positive");
+  const auto positive_scale = [](double s) { return s > 0 && std::isfinite(s); };
+  require(positive_scale(in_.membrane_stiffness_scale), "membrane_stiffness_scale must be positive and finite");
+  require(positive_scale(in_.contact_stiffness_scale), "contact_stiffness_scale must be positive and finite");
+  require(positive_scale(in_.tie_stiffness_scale), "tie_stiffness_scale must be positive and finite");
 
   half_ = in_.half_symmetry;
   n_full_ = in_.nodes_per_ring;
@@ -52,7 +56,8 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   l0_ = 2.0 * R_ * std::sin(pi / n_full_);
   const double I = in_.width_m * t_ * t_ * t_ / 12.0;
   k_theta_ = in_.youngs_modulus_pa * I / l0_;
-  k_m_ = in_.youngs_modulus_pa * t_ * in_.width_m / l0_;
+  const double k_section = in_.youngs_modulus_pa * t_ * in_.width_m / l0_;  // E t L / ℓ0
+  k_m_ = in_.membrane_stiffness_scale * k_section;
   M0_ = in_.yield_stress_pa * t_ * t_ * in_.width_m / 4.0;
   const double lh = in_.redwood_alpha > 0 ? in_.redwood_alpha * t_ : l0_;
   H_ = in_.hardening_modulus_pa * I /
@@ -61,9 +66,9 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   C_vp_ = 2.0 * lh / t_ * in_.cowper_symonds_d_per_s;
   q_ = in_.cowper_symonds_q;
   m_node_ = in_.density_kg_m3 * t_ * in_.width_m * (2.0 * pi * R_ / n_full_);
-  k_n_ = in_.contact_stiffness_scale * k_m_;
+  k_n_ = in_.contact_stiffness_scale * k_section;
   chi_ = in_.contact_damping_s_per_m;
-  k_tie_ = in_.tie_stiffness_scale * k_m_;
+  k_tie_ = in_.tie_stiffness_scale * k_section;
   c_bar_ = in_.membrane_damping_ratio * 2.0 * std::sqrt(k_m_ * m_node_ / 2.0);
   c_hinge_ = in_.hinge_damping_ratio * 2.0 * std::sqrt(k_theta_ * m_node_ * l0_ * l0_ / 2.0);
 
@@ -228,6 +233,7 @@ double PolygonChain::contact_load(double w, double penetration, double rate, Tal
   const double f = w * contact_force(penetration, rate, diss);
   tally.dissipation += w * diss;
   tally.contact_energy += w * 0.5 * k_n_ * penetration * penetration;
+  tally.max_penetration = std::max(tally.max_penetration, penetration);
   return f;
 }
 
@@ -299,7 +305,11 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 
   last_impactor_force_ = tally.impactor_force;
   last_target_force_ = tally.target_force;
-  if (record) last_contact_energy_ = tally.contact_energy;
+  if (record) {
+    last_contact_energy_ = tally.contact_energy;
+    last_max_penetration_ = tally.max_penetration;
+    last_max_strain_ = tally.max_bar_strain;
+  }
   last_elastic_ = tally.elastic;
 }
 

@@ -69,6 +69,16 @@ struct PolygonChainInput {
   double contact_stiffness_scale = 1.0;
   double contact_damping_s_per_m = 0.05;
 
+  // Membrane bars: k_m = scale · E t L / ℓ0 (the penalties above stay on the unscaled
+  // E t L / ℓ0). 1 is the section's EA. Below 1 it is a numerical softening of the hoop
+  // stretch, as the penalties are numerical: the bar mode 2c/ℓ0 bounds the central
+  // difference's step, and a thin ring crushes by bending: EA → s EA multiplies the hoop-stretch
+  // term π R/(4 EA) of the diametral compliance by 1/s, next to the bending term
+  // (π/4 − 2/π) R³/EI (THEORY §1.1) — the Test 30 ring's elastic stiffness falls by 0.4 % at
+  // s = 1/4, 2.5 % at 1/16, 10 % at 1/64 (tests/hinge/polygon_stiff_term_scale_test.cpp).
+  // All three scales must be positive and finite.
+  double membrane_stiffness_scale = 1.0;
+
   // Impactor (full mass; the half model carries half of it) and far end.
   double impactor_mass_kg = 0.257;
   double impactor_velocity_m_s = 0.0;  // toward the chain (downward)
@@ -185,6 +195,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // target.
   double impactor_force(double t, const double* y);
   double target_force(double t, const double* y);
+  // The same two forces from the last evaluation (energies() at a sample), without evaluating
+  // again: the forces do not depend on whether an evaluation records its pairs.
+  double impactor_force_last() const { return structure_factor() * last_impactor_force_; }
+  double target_force_last() const { return structure_factor() * last_target_force_; }
   double impactor_position(double t, const double* y) const;  // displacement from start, + down
   double impactor_velocity(double t, const double* y) const;  // + toward the chain
   // Factor from the modelled structure to the full one (2 for the half model).
@@ -197,6 +211,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double hinge_stiffness() const { return k_theta_; }
   double node_mass() const { return m_node_; }
   long contact_pairs_last() const { return static_cast<long>(pairs_.size()); }
+  // What the softened stiff terms cost (membrane_stiffness_scale, the penalty scales), at the
+  // state of the last energies() call: the deepest contact penetration (m; node–plate,
+  // node–segment, plate–plate) and the largest membrane strain |ℓ/ℓ0 − 1| of a bar.
+  double max_penetration_last() const { return last_max_penetration_; }
+  double max_membrane_strain_last() const { return last_max_strain_; }
   const PolygonChainInput& input() const { return in_; }
 
   // Cowper–Symonds flow of one hinge (THEORY §4.3): yield moment M_y(ā) = min(M0 + H ā, cap),
@@ -283,6 +302,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   struct Tally {
     double plastic_power = 0, dissipation = 0, damping = 0, elastic = 0, contact_energy = 0;
     double impactor_force = 0, target_force = 0;
+    double max_penetration = 0, max_bar_strain = 0;  // kept by recording evaluations (energies)
   };
   // polygon_ring_forces.cpp: hinges, membrane bars, flow law, node rows.
   void ring_forces(const double* y, double* phi, bool record, Tally& tally);
@@ -357,6 +377,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<double> bar_l_, bar_nx_, bar_ny_, bar_ex_, bar_ey_, bar_beta_;
   double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
   double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
+  double last_max_penetration_ = 0.0, last_max_strain_ = 0.0;
   std::vector<ContactPair> pairs_;
   std::vector<BodyContact> body_contacts_;
   std::vector<std::array<int, 2>> tie_pairs_;

@@ -174,7 +174,10 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
     }
     if (record) {
       const int bars = half_ ? n_full_ / 2 : n_full_;
-      for (int k = 0; k < bars; ++k) tally.elastic += 0.5 * k_m_ * (bar_l_[k] - l0_) * (bar_l_[k] - l0_);
+      for (int k = 0; k < bars; ++k) {
+        tally.elastic += 0.5 * k_m_ * (bar_l_[k] - l0_) * (bar_l_[k] - l0_);
+        tally.max_bar_strain = std::max(tally.max_bar_strain, std::abs(bar_l_[k] - l0_) / l0_);
+      }
     }
     for (int j = 0; j < n_ind_; ++j) {
       const auto o = node_offset(r, j);

@@ -72,6 +72,10 @@ struct PolygonRunOutput {
   // relaxation time met (CentralDifferenceStatistics); 0 for the other integrators.
   double min_step_s = 0.0, max_step_s = 0.0, min_flow_relaxation_s = 0.0;
   long power_refreshes = 0, landing_steps = 0;  // CentralDifferenceStatistics
+  // Largest contact penetration (m) and membrane strain |ℓ/ℓ0 − 1| over the output samples
+  // (PolygonChain::max_penetration_last, max_membrane_strain_last): what softened membrane
+  // and penalty stiffness cost in geometry.
+  double max_penetration_m = 0.0, max_membrane_strain = 0.0;
   double wall_time_s = 0.0;
   std::vector<double> final_state;
   std::vector<std::pair<double, StableStepBreakdown>> step_breakdown;  // (t, breakdown) per sample

@@ -6,7 +6,7 @@
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --repeat 5 [--integrator odeint]
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
 //       [--dampers implicit|explicit] [--step-breakdown]
-//       [--step-bound gershgorin|power] [--landing 0.002]
+//       [--step-bound gershgorin|power] [--landing 0.002] [--membrane-scale 0.25] [--penalty-scale 0.25]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -60,6 +60,7 @@ struct BenchOptions {
   bool step_breakdown = false;
   std::string step_bound = "power";
   std::optional<double> landing;
+  std::optional<double> membrane_scale, penalty_scale;
 };
 
 // Quantiles of the step-bound breakdown over the run's samples (stable_step_breakdown,
@@ -98,7 +99,7 @@ void print_step_breakdown(const std::vector<std::pair<double, hinge::StableStepB
 void bench(const BenchOptions& o) {
   const Scene scene = load_scene(o.scene);
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
-  Level2Settings settings;
+  Level2Settings settings = level2_settings(scene);
   if (o.safety) settings.central_difference_safety = *o.safety;
   if (o.jacobian_reuse) settings.jacobian_reuse_steps = *o.jacobian_reuse;
   if (o.klu_ordering) settings.klu_ordering = *o.klu_ordering;
@@ -113,6 +114,17 @@ void bench(const BenchOptions& o) {
   if (o.landing) {
     if (!(*o.landing >= 0.0)) throw std::invalid_argument("--landing must be ≥ 0");
     settings.central_difference_landing_depth_ratio = *o.landing;
+  }
+  // The stiff-term scales replace the scene's (Level2Settings::membrane_stiffness_scale).
+  const auto scale = [](std::optional<double> v, const char* flag) {
+    if (!(*v > 0.0 && *v <= 1.0)) throw std::invalid_argument(fmt::format("{} must lie in (0, 1], not {}", flag, *v));
+    return *v;
+  };
+  if (o.membrane_scale) settings.membrane_stiffness_scale = scale(o.membrane_scale, "--membrane-scale");
+  if (o.penalty_scale) {
+    const Level2Settings unscaled;
+    settings.contact_stiffness_scale = unscaled.contact_stiffness_scale * scale(o.penalty_scale, "--penalty-scale");
+    settings.tie_stiffness_scale = unscaled.tie_stiffness_scale * *o.penalty_scale;
   }
   std::vector<double> walls;
   Level2Run last;
@@ -142,6 +154,10 @@ void bench(const BenchOptions& o) {
                last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
   print_step_breakdown(last.raw.step_breakdown);
+  fmt::print("stiff terms: membrane x {:g}, contact x {:g}, ties x {:g}; over the samples max penetration "
+             "{:.3g} t, max membrane strain {:.3g}\n",
+             settings.membrane_stiffness_scale, settings.contact_stiffness_scale, settings.tie_stiffness_scale,
+             last.raw.max_penetration_m / scene.rings.wall_thickness_m, last.raw.max_membrane_strain);
   const auto alt = alternation(last.result.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
              last.raw.arrest_time_s * 1e3);
@@ -167,6 +183,11 @@ void add_bench_command(CLI::App& app) {
                   "central_difference: power (default: power-iteration estimate of omega_max) | gershgorin");
   cmd->add_option("--landing", o->landing,
                   "central_difference: contact landing depth as a fraction of t (default 0.001; 0: off)");
+  cmd->add_option("--membrane-scale", o->membrane_scale,
+                  "factor on the membrane bars' EA, in (0, 1] (default: the scene's level2_membrane_stiffness_scale)");
+  cmd->add_option("--penalty-scale", o->penalty_scale,
+                  "factor on the contact and tie penalty stiffness, in (0, 1] (default: the scene's "
+                  "level2_penalty_stiffness_scale)");
   cmd->add_flag("--step-breakdown", o->step_breakdown,
                "at every output sample: the stable-step bound with each stiffness term left out, and the "
                "power-iteration 2/omega_max (diagnostic)");
@@ -190,7 +211,7 @@ void shapes(const ShapesOptions& o) {
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   fmt::print("scene {}: {}\nhinge level 2 (polygon rings, N = {}) on {}\n", scene.name, scene.title,
              scene.hinge.nodes_per_ring, o.integrator);
-  const auto run = run_level2(scene, opt);
+  const auto run = run_level2(scene, opt, level2_settings(scene));
   const auto& r = run.result;
   for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
     fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", i + 1, r.crush_ratio[i],

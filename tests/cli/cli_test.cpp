@@ -113,3 +113,13 @@ TEST(Cli, ValidateAcceptsEveryShippedScene) {
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("test30_welded.toml: ok"), std::string::npos);
 }
+
+TEST(Cli, BenchHinge2StiffTermScalesOutOfRangeAreNamedErrors) {
+  for (const char* flag : {"--membrane-scale", "--penalty-scale"})
+    for (const char* bad : {"0", "1.5", "-0.25"}) {
+      const CommandRun r = ringcrush("bench-hinge2 " + scenes + "test30_welded.toml --repeat 1 --integrator "
+                                     "central_difference " + flag + " " + bad);
+      EXPECT_NE(r.status, 0) << flag << " " << bad;
+      EXPECT_NE(r.output.find(std::string(flag) + " must lie in (0, 1]"), std::string::npos) << r.output;
+    }
+}

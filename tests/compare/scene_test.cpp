@@ -186,3 +186,17 @@ TEST(SceneErrors, NotToml) {
 TEST(SceneErrors, MissingFile) {
   EXPECT_THROW(load_scene("/nonexistent/scene.toml"), SceneError);
 }
+
+TEST(SceneErrors, Level2StiffTermScales) {
+  for (const char* key : {"level2_membrane_stiffness_scale", "level2_penalty_stiffness_scale"})
+    for (const char* bad : {"0.0", "-0.25", "1.5", "nan"})
+      expect_error(base + "\n[hinge]\n" + key + " = " + bad + "\n", std::string("hinge.") + key,
+                   std::string(bad) == "nan" ? "finite" : "(0, 1]");
+  const Scene s = parse_scene(
+      base + "\n[hinge]\nlevel2_membrane_stiffness_scale = 0.25\nlevel2_penalty_stiffness_scale = 0.0625\n", "ok.toml");
+  EXPECT_EQ(s.hinge.level2_membrane_stiffness_scale, 0.25);
+  EXPECT_EQ(s.hinge.level2_penalty_stiffness_scale, 0.0625);
+  const Scene d = parse_scene(base, "ok.toml");
+  EXPECT_EQ(d.hinge.level2_membrane_stiffness_scale, 1.0);
+  EXPECT_EQ(d.hinge.level2_penalty_stiffness_scale, 1.0);
+}

@@ -75,3 +75,22 @@ TEST(PolygonChain, RejectsBadInput) {
   in.plate_thickness_m = 0.0;
   EXPECT_THROW(PolygonChain{in}, std::invalid_argument);
 }
+
+// The run's samples read the impactor and target forces off energies()'s evaluation instead of
+// evaluating twice more (polygon_simulation.cpp): the forces must be those of an evaluation
+// that records nothing, to the bit, on states in contact with the impactor and the target.
+TEST(PolygonChain, SampledForcesAreThoseOfAFreshEvaluation) {
+  for (auto joint : {PolygonJoint::Free, PolygonJoint::Welded, PolygonJoint::Plates}) {
+    const auto in = two_ring_chain::input(joint);
+    PolygonChain chain(in);
+    std::vector<double> y = chain.initial_state();
+    y[chain.body_offset(0)] -= 0.2 * in.wall_thickness_m;  // impactor pressed into ring 1
+    y[chain.node_offset(1, in.nodes_per_ring / 2) + 1] -= 0.1 * in.wall_thickness_m;  // ring 2 into the target
+    chain.energies(1e-4, y.data());
+    const double impactor = chain.impactor_force_last(), target = chain.target_force_last();
+    EXPECT_GT(impactor, 0.0);
+    EXPECT_GT(target, 0.0);
+    EXPECT_EQ(impactor, chain.impactor_force(1e-4, y.data())) << static_cast<int>(joint);
+    EXPECT_EQ(target, chain.target_force(1e-4, y.data())) << static_cast<int>(joint);
+  }
+}
