@@ -25,11 +25,13 @@ hinge::PolygonJoint joint_of(JointType j) {
 
 }  // namespace
 
-Level2Settings level2_settings(const Scene& scene) {
+Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   Level2Settings s;
-  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale;
-  s.contact_stiffness_scale *= scene.hinge.level2_penalty_stiffness_scale;
-  s.tie_stiffness_scale *= scene.hinge.level2_penalty_stiffness_scale;
+  const double fallback = integrator == HingeIntegrator::CentralDifference ? kCentralDifferenceStiffTermScale : 1.0;
+  const double penalty = scene.hinge.level2_penalty_stiffness_scale.value_or(fallback);
+  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(fallback);
+  s.contact_stiffness_scale *= penalty;
+  s.tie_stiffness_scale *= penalty;
   return s;
 }
 
@@ -317,7 +319,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
 }
 
 RunResult run_hinge_level2(const Scene& scene, const HingeRunOptions& options) {
-  return run_level2(scene, options, level2_settings(scene)).result;
+  return run_level2(scene, options, level2_settings(scene, options.integrator)).result;
 }
 
 }  // namespace ringcrush::compare

@@ -421,8 +421,9 @@ Scene parse_scene(const std::string& text, const std::string& file) {
     h.nodes_per_ring = static_cast<int>(r.integer("nodes_per_ring", h.nodes_per_ring));
     for (auto [key, value] : {std::pair{"level2_membrane_stiffness_scale", &h.level2_membrane_stiffness_scale},
                               std::pair{"level2_penalty_stiffness_scale", &h.level2_penalty_stiffness_scale}}) {
-      *value = r.number(key, *value);
-      require(*value > 0 && *value <= 1, r, key, fmt::format("{} must lie in (0, 1] (1: the unscaled model)", *value));
+      if (!r.has(key)) continue;
+      *value = r.number(key, 1.0);
+      require(**value > 0 && **value <= 1, r, key, fmt::format("{} must lie in (0, 1] (1: the unscaled model)", **value));
     }
     h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
         "level3_hinge_f",

@@ -137,8 +137,9 @@ struct HingeSettings {
   // Level 2 stiff terms (compare/hinge_run_2d.hpp Level2Settings): the membrane bars' EA and
   // the contact and tie penalties × these, in (0, 1]; 1 is the model as it was. Softer terms
   // let the central difference take longer steps (README "Level 2: softer stiff terms").
-  double level2_membrane_stiffness_scale = 1.0;
-  double level2_penalty_stiffness_scale = 1.0;
+  // Unset: the integrator's default (level2_settings: 1/4 for the central difference, 1 else).
+  std::optional<double> level2_membrane_stiffness_scale;
+  std::optional<double> level2_penalty_stiffness_scale;
   // Level 3 hinge F of the wrap (hinge/level3_mechanism.hpp): fixed where the wrap starts at
   // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
   enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;

@@ -99,7 +99,7 @@ void print_step_breakdown(const std::vector<std::pair<double, hinge::StableStepB
 void bench(const BenchOptions& o) {
   const Scene scene = load_scene(o.scene);
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
-  Level2Settings settings = level2_settings(scene);
+  Level2Settings settings = level2_settings(scene, opt.integrator);
   if (o.safety) settings.central_difference_safety = *o.safety;
   if (o.jacobian_reuse) settings.jacobian_reuse_steps = *o.jacobian_reuse;
   if (o.klu_ordering) settings.klu_ordering = *o.klu_ordering;
@@ -211,7 +211,7 @@ void shapes(const ShapesOptions& o) {
   const HingeRunOptions opt = level2_options(scene, o.integrator, o.rtol);
   fmt::print("scene {}: {}\nhinge level 2 (polygon rings, N = {}) on {}\n", scene.name, scene.title,
              scene.hinge.nodes_per_ring, o.integrator);
-  const auto run = run_level2(scene, opt, level2_settings(scene));
+  const auto run = run_level2(scene, opt, level2_settings(scene, opt.integrator));
   const auto& r = run.result;
   for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
     fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", i + 1, r.crush_ratio[i],

@@ -172,18 +172,30 @@ TEST(PolygonStiffTermScale, SofterStiffTermsTakeFewerStepsAndKeepTheCrush) {
 }
 
 // The scene's [hinge] keys reach the chain: the membrane scale as given, the penalty scale on
-// both the contact and the tie stiffness; without the keys the settings are the defaults.
+// both the contact and the tie stiffness; without the keys the settings are the integrator's
+// defaults: the unscaled model for IDA and Odeint, 1/4 for the central difference.
 TEST(PolygonStiffTermScale, SceneKeysReachTheChainInput) {
   using namespace ringcrush::compare;
   Scene scene = load_scene(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
-  const auto plain = polygon_input(scene, level2_settings(scene));
-  EXPECT_EQ(plain.membrane_stiffness_scale, 1.0);
-  EXPECT_EQ(plain.contact_stiffness_scale, Level2Settings{}.contact_stiffness_scale);
-  EXPECT_EQ(plain.tie_stiffness_scale, Level2Settings{}.tie_stiffness_scale);
+  for (auto integrator : {HingeIntegrator::Ida, HingeIntegrator::Odeint}) {
+    const auto plain = polygon_input(scene, level2_settings(scene, integrator));
+    EXPECT_EQ(plain.membrane_stiffness_scale, 1.0);
+    EXPECT_EQ(plain.contact_stiffness_scale, Level2Settings{}.contact_stiffness_scale);
+    EXPECT_EQ(plain.tie_stiffness_scale, Level2Settings{}.tie_stiffness_scale);
+  }
+  const auto cd = polygon_input(scene, level2_settings(scene, HingeIntegrator::CentralDifference));
+  EXPECT_EQ(cd.membrane_stiffness_scale, kCentralDifferenceStiffTermScale);
+  EXPECT_EQ(cd.contact_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.contact_stiffness_scale);
+  EXPECT_EQ(cd.tie_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.tie_stiffness_scale);
   scene.hinge.level2_membrane_stiffness_scale = 0.25;
   scene.hinge.level2_penalty_stiffness_scale = 0.0625;
-  const auto soft = polygon_input(scene, level2_settings(scene));
-  EXPECT_EQ(soft.membrane_stiffness_scale, 0.25);
-  EXPECT_EQ(soft.contact_stiffness_scale, 0.0625);
-  EXPECT_EQ(soft.tie_stiffness_scale, 0.0625);
+  for (auto integrator : {HingeIntegrator::Ida, HingeIntegrator::CentralDifference}) {
+    const auto soft = polygon_input(scene, level2_settings(scene, integrator));
+    EXPECT_EQ(soft.membrane_stiffness_scale, 0.25);
+    EXPECT_EQ(soft.contact_stiffness_scale, 0.0625);
+    EXPECT_EQ(soft.tie_stiffness_scale, 0.0625);
+  }
+  scene.hinge.level2_membrane_stiffness_scale = 1.0;  // a scene's 1 is the unscaled model on every integrator
+  scene.hinge.level2_penalty_stiffness_scale = 1.0;
+  EXPECT_EQ(polygon_input(scene, level2_settings(scene, HingeIntegrator::CentralDifference)).membrane_stiffness_scale, 1.0);
 }
