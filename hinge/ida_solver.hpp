@@ -76,6 +76,11 @@ class IdaSolver {
   //                     treats as inactive until it leaves zero.
   void reinit(double t, const std::vector<double>& y, const std::vector<double>& yp,
               const std::vector<int>& mask);
+  // From the next reinit() on, IDA is given only the root functions `live` (the model's
+  // indices, ascending, distinct; empty: all) until the next call; the others must keep their
+  // sign at that restart, and one that changes it is a std::logic_error from advance()/step()
+  // (hinge/ida_live_roots.hpp). Masks and roots_found stay in the model's indices.
+  void set_live_roots(const std::vector<std::size_t>& live);
   // The current mask (entries drop to 0 as roots are released).
   const std::vector<int>& root_mask() const;
 
