@@ -43,6 +43,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   io.max_steps = o.max_steps_per_segment;
   io.max_step = o.max_step;
   io.root_mask_tolerance = o.root_mask_tolerance;
+  if (o.ida_eigen_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::EigenDense;
   const bool algebraic = has_algebraic(system.differential_mask());
   io.suppress_algebraic_error_test = algebraic;
   const bool reduced = o.ida_reduced_state.value_or(false);

@@ -94,6 +94,10 @@ struct HybridOptions {
   // with their number), a held root that changes sign being an error. Unset, the model's choice
   // (the driver: off).
   std::optional<bool> ida_live_roots;
+  // IDA's Newton matrix factorised by Eigen's LU instead of SUNDIALS' dense GETRF/GETRS
+  // (IdaOptions::LinearSolver::EigenDense), for small live states. Unset, the model's choice
+  // (the driver: off).
+  std::optional<bool> ida_eigen_lu;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

@@ -1,5 +1,6 @@
 #include "ida_solver.hpp"
 
+#include "eigen_dense_linear_solver.hpp"
 #include "ida_live_roots.hpp"
 
 #include <ida/ida.h>
@@ -195,6 +196,9 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
         SUNBandMatrix(n, options.upper_bandwidth, options.lower_bandwidth, m.context),
         "SUNBandMatrix");
     m.linear_solver = check_alloc(SUNLinSol_Band(m.y, m.matrix, m.context), "SUNLinSol_Band");
+  } else if (options.linear_solver == IdaOptions::LinearSolver::EigenDense) {
+    m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
+    m.linear_solver = check_alloc(eigen_dense_linear_solver(n, m.context), "eigen_dense_linear_solver");
   } else {
     m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
     m.linear_solver = check_alloc(SUNLinSol_Dense(m.y, m.matrix, m.context), "SUNLinSol_Dense");

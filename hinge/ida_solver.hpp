@@ -30,7 +30,9 @@ inline constexpr int root_mask_inactive = 2;
 struct IdaOptions {
   double relative_tolerance = 1e-8;
   double absolute_tolerance = 1e-10;
-  enum class LinearSolver { Dense, Band } linear_solver = LinearSolver::Dense;
+  // EigenDense: Eigen's partially pivoted LU on the same dense matrix
+  // (hinge/eigen_dense_linear_solver.hpp), for small systems.
+  enum class LinearSolver { Dense, Band, EigenDense } linear_solver = LinearSolver::Dense;
   long upper_bandwidth = 0;  // band solver only
   long lower_bandwidth = 0;
   long max_steps = 100000;   // per call to advance()

@@ -618,6 +618,9 @@ Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions
   if (!opt.ida_component_tolerances) opt.ida_component_tolerances = true;
   // IDA given only the roots that can fire (live_roots()): 24 of 37 at most on Test 30.
   if (!opt.ida_live_roots) opt.ida_live_roots = true;
+  // Eigen's LU on IDA's 5–15 × 5–15 Newton matrix (SUNDIALS' dense GETRS was ~1.8k
+  // instructions a solve): the same steps, results to 1e-12 d.
+  if (!opt.ida_eigen_lu) opt.ida_eigen_lu = true;
   Level3InertialChain chain(in, res.wrap);
   res.initial_kinetic_energy_j = 0.5 * in.impactor_mass_kg * in.impactor_velocity_m_s * in.impactor_velocity_m_s;
   std::vector<double> y = chain.initial_state();
