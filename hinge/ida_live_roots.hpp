@@ -3,9 +3,9 @@
 // search over all of them when one has crossed — grows with the number of root functions it
 // is given, and a hybrid model may know that some of them are constant between events (Level 3
 // with ring inertia: the slots of unavailable mechanisms, a rigid ring's crush rate, a crushing
-// ring's tension root — ~13 of 37 read a fixed 1). Every event restarts IDA anyway, so at each
-// restart IDA is given the live ones only (IDARootInit), and a root it finds is mapped back to
-// the model's index.
+// ring's tension root — 19 to 29 of 37 read a fixed 1 on Test 30 welded). Every event restarts
+// IDA anyway, so at each restart IDA is given the live ones only (IDARootInit), and a root it
+// finds is mapped back to the model's index.
 //
 // A root declared held must keep, within the segment, the sign it had at the restart: the
 // model's root functions are still evaluated in full (they share the accelerations), so every
