@@ -43,6 +43,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   io.max_steps = o.max_steps_per_segment;
   io.max_step = o.max_step;
   io.root_mask_tolerance = o.root_mask_tolerance;
+  if (o.ida_eigen_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::EigenDense;
   const bool algebraic = has_algebraic(system.differential_mask());
   io.suppress_algebraic_error_test = algebraic;
   const bool reduced = o.ida_reduced_state.value_or(false);
@@ -61,6 +62,8 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
       if (!(a > 0.0) || !std::isfinite(a))
         throw std::invalid_argument(fmt::format("run_hybrid: absolute tolerance {} (need finite, > 0)", a));
   }
+  // IDA on the root functions that can fire before the next event (hinge/ida_live_roots.hpp).
+  const bool live_roots = o.ida_live_roots.value_or(false);
   // Whole state: one IDA. Reduced: one IDA per live size met so far (IDA cannot resize; the
   // restart after every event reinitialises whichever is used), all on the one live view.
   IdaLiveState live(system);
@@ -103,6 +106,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
       ida->set_tolerances(io.relative_tolerance * scale, a);
     }
     if (from_last) ida->set_initial_step(*o.ida_restart_step_fraction * h_last);
+    if (live_roots) ida->set_live_roots(system.live_roots());
     ida->reinit(t, y0, yp0, near_zero_roots(system, t, state, o.root_mask_tolerance, fired));
     if (algebraic) ida->calc_initial_conditions(t + ic_horizon);
     ida->set_stop_time(o.end_time);

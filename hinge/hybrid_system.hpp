@@ -53,6 +53,12 @@ class HybridSystem : public DaeSystem, public OdeSystem {
   // restart when HybridOptions::ida_reduced_state is on (hinge/ida_live_state.hpp).
   virtual std::vector<std::size_t> live_components() const { return {}; }
 
+  // The root functions that can change sign until the next event, in the current mode
+  // (ascending, distinct; empty: all). The others must keep the sign they have at the restart
+  // (a named error otherwise). Read at every restart when HybridOptions::ida_live_roots is on
+  // (hinge/ida_live_roots.hpp).
+  virtual std::vector<std::size_t> live_roots() const { return {}; }
+
   // IDA's absolute tolerance per component for the run's relative and absolute tolerances
   // (empty: `absolute` for every component), for a state whose components differ in units or
   // scale (m, m/s, J). Read at every restart when HybridOptions::ida_component_tolerances is
@@ -84,6 +90,14 @@ struct HybridOptions {
   // IDA's absolute tolerance per component, the model's absolute_tolerances(). Unset, the
   // model's choice (the driver: off).
   std::optional<bool> ida_component_tolerances;
+  // IDA given only the model's live_roots() at each restart (its per-step root work scales
+  // with their number), a held root that changes sign being an error. Unset, the model's choice
+  // (the driver: off).
+  std::optional<bool> ida_live_roots;
+  // IDA's Newton matrix factorised by Eigen's LU instead of SUNDIALS' dense GETRF/GETRS
+  // (IdaOptions::LinearSolver::EigenDense), for small live states. Unset, the model's choice
+  // (the driver: off).
+  std::optional<bool> ida_eigen_lu;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

@@ -1,5 +1,8 @@
 #include "ida_solver.hpp"
 
+#include "eigen_dense_linear_solver.hpp"
+#include "ida_live_roots.hpp"
+
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -12,6 +15,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <cstdlib>
+#include <optional>
 #include <fmt/format.h>
 
 namespace ringcrush::hinge {
@@ -79,6 +83,13 @@ struct IdaSolver::Impl {
   std::string last_message;
   DaeSystem* system = nullptr;
   std::vector<int> masked;  // per root, see IdaSolver::reinit
+  // The roots IDA is given (all unless set_live_roots()), in the model's indices; the model's
+  // values, of which IDA gets the live ones; a held root's sign change (the model's list).
+  IdaLiveRoots live_roots;
+  std::optional<std::vector<std::size_t>> pending_live_roots;
+  int ida_root_count = 0;
+  std::vector<double> model_roots;
+  std::string root_failure;
 
   ~Impl() {
     if (ida) IDAFree(&ida);
@@ -108,10 +119,20 @@ struct IdaSolver::Impl {
 
   static int roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* user) {
     auto* self = static_cast<Impl*>(user);
+    const bool all = self->live_roots.all();
+    double* model = all ? g : self->model_roots.data();
     try {
-      self->system->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
+      self->system->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), model);
     } catch (...) {
       return -1;  // IDA_RTFUNC_FAIL
+    }
+    if (!all) {
+      try {
+        self->live_roots.check_held(t, model);
+      } catch (const std::logic_error& e) {
+        self->root_failure = e.what();  // rethrown by run() as it is
+        return -1;
+      }
     }
     // Masking: a just-fired root reads exactly zero (inactive for IDA) until it has left
     // zero; IDA then re-activates it without reporting a crossing.
@@ -119,9 +140,10 @@ struct IdaSolver::Impl {
     for (std::size_t i = 0; i < self->masked.size(); ++i) {
       const int m = self->masked[i];
       if (m == 0) continue;
-      if (std::abs(g[i]) > tol) self->masked[i] = 0;
-      else g[i] = (m == 1 || m == -1) ? m * tol : 0.0;
+      if (std::abs(model[i]) > tol) self->masked[i] = 0;
+      else model[i] = (m == 1 || m == -1) ? m * tol : 0.0;
     }
+    if (!all) self->live_roots.gather(model, g);
     return 0;
   }
 
@@ -174,6 +196,9 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
         SUNBandMatrix(n, options.upper_bandwidth, options.lower_bandwidth, m.context),
         "SUNBandMatrix");
     m.linear_solver = check_alloc(SUNLinSol_Band(m.y, m.matrix, m.context), "SUNLinSol_Band");
+  } else if (options.linear_solver == IdaOptions::LinearSolver::EigenDense) {
+    m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
+    m.linear_solver = check_alloc(eigen_dense_linear_solver(n, m.context), "eigen_dense_linear_solver");
   } else {
     m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
     m.linear_solver = check_alloc(SUNLinSol_Dense(m.y, m.matrix, m.context), "SUNLinSol_Dense");
@@ -195,6 +220,9 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
   if (const auto nroots = system.root_count(); nroots > 0) {
     m.check(IDARootInit(m.ida, static_cast<int>(nroots), &Impl::roots), "IDARootInit");
     m.check(IDASetNoInactiveRootWarn(m.ida), "IDASetNoInactiveRootWarn");
+    m.ida_root_count = static_cast<int>(nroots);
+    m.live_roots = IdaLiveRoots(nroots);
+    m.model_roots.assign(nroots, 0.0);
   }
 }
 
@@ -238,6 +266,27 @@ void IdaSolver::reinit(double t, const std::vector<double>& y, const std::vector
   t_ = t;
   y_ = y;
   yp_ = yp;
+  m.root_failure.clear();
+  if (m.pending_live_roots) {
+    // The held roots' signs at the restart, then IDA's root functions resized if needed
+    // (IDARootInit reallocates its root arrays only when the number changes).
+    std::vector<double> start(system_.root_count(), 0.0);
+    if (!m.pending_live_roots->empty())
+      system_.roots(t, y_.data(), yp_.data(), start.data());
+    m.live_roots.select(*m.pending_live_roots, start);
+    m.pending_live_roots.reset();
+    if (const auto count = static_cast<int>(m.live_roots.size()); count != m.ida_root_count) {
+      m.check(IDARootInit(m.ida, count, &Impl::roots), "IDARootInit");
+      m.check(IDASetNoInactiveRootWarn(m.ida), "IDASetNoInactiveRootWarn");
+      m.ida_root_count = count;
+    }
+  }
+}
+
+void IdaSolver::set_live_roots(const std::vector<std::size_t>& live) {
+  if (system_.root_count() == 0 && !live.empty())
+    throw std::invalid_argument("IdaSolver::set_live_roots: the system has no root functions");
+  impl_->pending_live_roots = live;
 }
 
 void IdaSolver::set_stop_time(double t_stop) {
@@ -268,6 +317,8 @@ double IdaSolver::last_step() const {
 void IdaSolver::set_root_direction(const std::vector<int>& direction) {
   if (direction.size() != system_.root_count())
     throw std::invalid_argument("IdaSolver: one direction per root function");
+  if (!impl_->live_roots.all())
+    throw std::logic_error("IdaSolver::set_root_direction: not with live roots (IDARootInit resets the directions)");
   std::vector<int> copy = direction;
   impl_->check(IDASetRootDirection(impl_->ida, copy.data()), "IDASetRootDirection");
 }
@@ -276,6 +327,7 @@ IdaSolver::Step IdaSolver::run(double tout, int mode) {
   auto& m = *impl_;
   realtype tret = t_;
   const int flag = IDASolve(m.ida, tout, &tret, m.y, m.yp, mode);
+  if (flag == IDA_RTFUNC_FAIL && !m.root_failure.empty()) throw std::logic_error(m.root_failure);
   if (flag < 0) {
     const std::string where = fmt::format("IDASolve at t = {:.9g} s toward {:.9g} s", tret, tout);
     check_ida(flag, where.c_str(), m.last_message);
@@ -284,8 +336,9 @@ IdaSolver::Step IdaSolver::run(double tout, int mode) {
   pull();
   Step step{t_, flag == IDA_ROOT_RETURN, flag == IDA_TSTOP_RETURN, {}};
   if (step.root_found) {
-    step.roots_found.assign(system_.root_count(), 0);
+    step.roots_found.assign(static_cast<std::size_t>(m.ida_root_count), 0);
     m.check(IDAGetRootInfo(m.ida, step.roots_found.data()), "IDAGetRootInfo");
+    step.roots_found = m.live_roots.expand(step.roots_found);
   }
   return step;
 }

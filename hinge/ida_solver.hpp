@@ -30,7 +30,9 @@ inline constexpr int root_mask_inactive = 2;
 struct IdaOptions {
   double relative_tolerance = 1e-8;
   double absolute_tolerance = 1e-10;
-  enum class LinearSolver { Dense, Band } linear_solver = LinearSolver::Dense;
+  // EigenDense: Eigen's partially pivoted LU on the same dense matrix
+  // (hinge/eigen_dense_linear_solver.hpp), for small systems.
+  enum class LinearSolver { Dense, Band, EigenDense } linear_solver = LinearSolver::Dense;
   long upper_bandwidth = 0;  // band solver only
   long lower_bandwidth = 0;
   long max_steps = 100000;   // per call to advance()
@@ -76,6 +78,11 @@ class IdaSolver {
   //                     treats as inactive until it leaves zero.
   void reinit(double t, const std::vector<double>& y, const std::vector<double>& yp,
               const std::vector<int>& mask);
+  // From the next reinit() on, IDA is given only the root functions `live` (the model's
+  // indices, ascending, distinct; empty: all) until the next call; the others must keep their
+  // sign at that restart, and one that changes it is a std::logic_error from advance()/step()
+  // (hinge/ida_live_roots.hpp). Masks and roots_found stay in the model's indices.
+  void set_live_roots(const std::vector<std::size_t>& live);
   // The current mask (entries drop to 0 as roots are released).
   const std::vector<int>& root_mask() const;
 

@@ -95,3 +95,60 @@ TEST(Level3InertiaLiveState, ComponentTolerancesKeepTheResult) {
     EXPECT_LT(scaled.outcome.statistics.steps, scalar.outcome.statistics.steps) << v << " m/s";
   }
 }
+
+// IDA given only the live root functions (HybridOptions::ida_live_roots, on by default for this
+// chain; Level3InertialChain::live_roots): the same events (kind, ring) at the same times to
+// 1e-12 s as the whole root set of 37 (IDA locates them to ~1e-15 s relative; the two runs take
+// the same steps), final crush per ring to 1e-9 d, same steps and events counted. A held root
+// that changes sign would throw (ida_live_roots_test.cpp), so the runs completing also says
+// the chain's list holds on these three crushes.
+TEST(Level3InertiaLiveState, LiveRootsFireTheSameEventsAtThreeSpeeds) {
+  for (double v : {27.7, 45.0, 50.0}) {
+    const auto in = test30_level3(v, true);
+    auto all_opt = bench_ida();
+    all_opt.ida_live_roots = false;
+    const auto all = simulate_level3(in, all_opt, false);
+    const auto live = simulate_level3(in, bench_ida(), false);  // the chain's default: on
+    const double d = in.ring.mean_diameter();
+    ASSERT_EQ(live.events.size(), all.events.size()) << v << " m/s";
+    ASSERT_GE(live.events.size(), 6u) << v << " m/s";
+    for (std::size_t e = 0; e < all.events.size(); ++e) {
+      EXPECT_EQ(live.events[e].kind, all.events[e].kind) << v << " m/s, event " << e;
+      EXPECT_EQ(live.events[e].ring, all.events[e].ring) << v << " m/s, event " << e;
+      EXPECT_NEAR(live.events[e].time_s, all.events[e].time_s, 1e-12) << v << " m/s, event " << e;
+    }
+    ASSERT_EQ(live.rings.size(), all.rings.size());
+    for (std::size_t i = 0; i < all.rings.size(); ++i) {
+      EXPECT_NEAR(live.rings[i].crush_m / d, all.rings[i].crush_m / d, 1e-9) << v << " m/s, ring " << i + 1;
+      EXPECT_EQ(live.rings[i].mode, all.rings[i].mode) << v << " m/s, ring " << i + 1;
+    }
+    EXPECT_EQ(live.outcome.statistics.events, all.outcome.statistics.events) << v << " m/s";
+    EXPECT_EQ(live.outcome.statistics.steps, all.outcome.statistics.steps) << v << " m/s";
+    EXPECT_LE(live.energy_balance_error(), 1e-6) << v << " m/s";
+  }
+}
+
+// Eigen's LU on IDA's Newton matrix (HybridOptions::ida_eigen_lu, on by default for this chain)
+// against SUNDIALS' dense solver: the same steps and events (kind, ring), event times to 1e-9 s
+// (2.9e-10 s measured at 45 m/s: round-off in the solves moves a near-grazing root), final crush
+// per ring to 1e-9 d.
+TEST(Level3InertiaLiveState, EigenLuKeepsTheStepsAndEventsAtThreeSpeeds) {
+  for (double v : {27.7, 45.0, 50.0}) {
+    const auto in = test30_level3(v, true);
+    auto sundials_opt = bench_ida();
+    sundials_opt.ida_eigen_lu = false;
+    const auto sundials = simulate_level3(in, sundials_opt, false);
+    const auto eigen = simulate_level3(in, bench_ida(), false);
+    const double d = in.ring.mean_diameter();
+    ASSERT_EQ(eigen.events.size(), sundials.events.size()) << v << " m/s";
+    for (std::size_t e = 0; e < sundials.events.size(); ++e) {
+      EXPECT_EQ(eigen.events[e].kind, sundials.events[e].kind) << v << " m/s, event " << e;
+      EXPECT_EQ(eigen.events[e].ring, sundials.events[e].ring) << v << " m/s, event " << e;
+      EXPECT_NEAR(eigen.events[e].time_s, sundials.events[e].time_s, 1e-9) << v << " m/s, event " << e;
+    }
+    ASSERT_EQ(eigen.rings.size(), sundials.rings.size());
+    for (std::size_t i = 0; i < sundials.rings.size(); ++i)
+      EXPECT_NEAR(eigen.rings[i].crush_m / d, sundials.rings[i].crush_m / d, 1e-9) << v << " m/s, ring " << i + 1;
+    EXPECT_EQ(eigen.outcome.statistics.steps, sundials.outcome.statistics.steps) << v << " m/s";
+  }
+}
