@@ -309,6 +309,24 @@ SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth, do
   }
   slave_omega2_.resize(passes_.size());
   for (std::size_t p = 0; p < passes_.size(); ++p) slave_omega2_[p].assign(passes_[p].slaves.size(), 0.0);
+  x_last_.resize(tracked_.size());
+  open_until_.resize(passes_.size());
+  for (std::size_t p = 0; p < passes_.size(); ++p) {
+    open_until_[p].assign(passes_[p].slaves.size(), -1.0);
+    // |c_k(f)| ≤ Σ_q |a_kq| F^q and |c_k'(f)| ≤ |a_k1| + 2|a_k2| F + 3|a_k3| F² over |f| ≤ F;
+    // rounded up by a relative 1e-12.
+    auto& gains = motion_gain_.emplace_back();
+    for (const auto& poly : poly_[p]) {
+      const double F = std::max(std::abs(poly.lo), std::abs(poly.hi));
+      double kx = 0, kt = 0;
+      for (int k = 0; k < poly.count; ++k) {
+        const double* c = poly.a[k];
+        kx += std::abs(c[0]) + F * (std::abs(c[1]) + F * (std::abs(c[2]) + F * std::abs(c[3])));
+        kt += std::abs(c[1]) + F * (2 * std::abs(c[2]) + 3 * F * std::abs(c[3]));
+      }
+      gains.push_back({kx * (1 + 1e-12), kt * (1 + 1e-12)});
+    }
+  }
 }
 
 void SurfaceContact::set_mass(const Eigen::VectorXd& mass) {
@@ -329,6 +347,10 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
   ++rebuilds_;
   built_ = true;
   for (std::size_t i = 0; i < tracked_.size(); ++i) x_build_[i] = x[tracked_[i]];
+  // The candidates change: no certificate is carried across a build.
+  x_last_ = x_build_;
+  travel_ = 0;
+  for (auto& until : open_until_) std::fill(until.begin(), until.end(), -1.0);
   candidate_piece_.clear();
   busy_passes_.clear();
   std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
@@ -443,6 +465,26 @@ bool SurfaceContact::certified_open(const PieceCache& pc, double x, double y, do
   return dv * a - du * b > 1e-9 * depth * (a + b);
 }
 
+double SurfaceContact::open_budget(const PieceCache& pc, const std::array<double, 2>& gain, double x, double y,
+                                   double depth) {
+  // certified_open()'s terms at this evaluation, in its chord frame (kept for the bound).
+  const double a = pc.along_min, b = pc.across_max;
+  if (!(a > 0)) return 0;
+  const double along = x * pc.t[0] + y * pc.t[1], across = y * pc.t[0] - x * pc.t[1];
+  const double dv = across - pc.range[3];
+  if (!(dv > 0)) return 0;
+  const double du = std::max(along - pc.range[0], pc.range[1] - along);
+  // After moves of at most δ (header: "Carried over evaluations"): dv a − du b ≥ slack − δ rate
+  // must stay above the margin 1e-9 depth (a + b) with a + b ≤ a₀ + b₀ + 2 δ K_t, and dv, a
+  // positive.
+  const double P = 1 + gain[0], Q = gain[1];
+  const double slack = dv * a - du * b - 1e-9 * depth * (a + b);
+  if (!(slack > 0)) return 0;
+  const double rate = P * (a + b) + Q * (du + dv) + 2e-9 * depth * Q;
+  // Rounded down by a relative 1e-6 (the rounding of these few operations is ~1e-15).
+  return std::min({slack / rate, dv / P, a / Q}) * (1 - 1e-6);
+}
+
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
                               std::vector<ContactContribution>& out, std::vector<std::pair<int, double>>* pressure,
                               SurfaceContactState& st) {
@@ -454,9 +496,19 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
 void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
   bool stale = !built_;
   const double skin2 = skin_ * skin_;
-  for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
-    stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
-  if (stale) rebuild(x);
+  double step2 = 0;  // largest squared step of a tracked node since the last evaluation
+  for (std::size_t i = 0; i < tracked_.size() && !stale; ++i) {
+    const Eigen::Vector2d& xi = x[tracked_[i]];
+    stale = (xi - x_build_[i]).squaredNorm() >= skin2;
+    step2 = std::max(step2, (xi - x_last_[i]).squaredNorm());
+    x_last_[i] = xi;
+  }
+  if (stale) {
+    rebuild(x);  // clears the travel and the carried certificates
+  } else {
+    // Rounded up by a relative 1e-12 (a difference, a square root and a sum: ~1e-15).
+    travel_ += std::sqrt(step2) * (1 + 1e-12);
+  }
   ++stamp_;
   if (found_.size() != passes_.size()) found_.resize(passes_.size());
   for (auto& r : found_) {
@@ -464,6 +516,7 @@ void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
     r.near_omega2 = 0;
     r.near_node = -1;
     r.spared = 0;
+    r.carried = 0;
   }
   arrival_.begin();
 }
@@ -474,10 +527,22 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
   PassFound& found = found_[pi];
   const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
   double xy[12];
+  const bool carry = spare_open_ && carry_open_;
+  auto& open_until = open_until_[pi];
+  const auto& gains = motion_gain_[pi];
   for (const int si : near_slaves_[pi]) {
     const auto s = static_cast<std::size_t>(si);
     const int node = p.slaves[s];
+    // Certified open at an earlier evaluation with a budget not yet spent (header: "Carried
+    // over evaluations"): nothing to find, and as for a spared slave, nothing to change.
+    if (carry && travel_ < open_until[s] && arrival_.remembered_piece(pi, s) < 0 &&
+        !(slave_omega2_[pi][s] > found.near_omega2)) {
+      ++found.carried;
+      continue;
+    }
     const Eigen::Vector2d& xs = x[node];
+    // The budget of a carried certificate: the least over every listed candidate.
+    double budget = carry ? std::numeric_limits<double>::infinity() : 0.0;
     int best = -1;
     double best_abs = depth_, best_f = 0, best_gap = 0;
     // Candidates within one depth of the curve's box, with that distance as a lower bound
@@ -510,6 +575,7 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       const int q = candidate_piece_[c];
       PieceCache& pc = cache_[pi][q];
       if (pc.stamp != stamp_) refresh(pi, q, x);
+      if (budget > 0) budget = std::min(budget, open_budget(pc, gains[q], xs.x(), xs.y(), depth_));
       double bound = -1.0;
       if (p.symmetric_end[q]) {
         const double* cb = pc.box;
@@ -529,6 +595,7 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
       else project(q);
     }
+    if (carry) open_until[s] = budget > 0 ? travel_ + budget : -1.0;
     if (open && count > 0 && arrival_.remembered_piece(pi, s) < 0 && !(slave_omega2_[pi][s] > found.near_omega2)) {
       ++found.spared;
       continue;
@@ -594,6 +661,12 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
 long SurfaceContact::spared_slaves() const {
   long n = 0;
   for (const auto& r : found_) n += r.spared;
+  return n;
+}
+
+long SurfaceContact::carried_slaves() const {
+  long n = 0;
+  for (const auto& r : found_) n += r.carried;
   return n;
 }
 

@@ -37,6 +37,20 @@
 // largest already found in its pass (so whether it is near changes nothing), adds nothing and
 // changes nothing: it is not projected (bitwise the full search; test).
 //
+// Carried over evaluations (issue 4 performance; README "Session 11"): the certificate is
+// a bound, so it survives motion. In the chord frame (t, n) of the evaluation that formed it,
+// the cross product x'(f) × (x_s − x(f)) = (x'·t)(v_s − v(f)) − (x'·n)(u_s − u(f)) holds in
+// any orthonormal frame; if no node of the slave or the piece has moved more than δ since,
+// x(f) has moved at most δ K_x and x'(f) at most δ K_t (K the sums of the magnitudes of the
+// piece's shape-function coefficients), so dv ≥ dv₀ − δ(1 + K_x), du ≤ du₀ + δ(1 + K_x),
+// a ≥ a₀ − δ K_t, b ≤ b₀ + δ K_t, and dv a − du b ≥ dv₀ a₀ − du₀ b₀ − δ((1 + K_x)(a₀ + b₀)
+// + K_t(du₀ + dv₀)) (the δ² terms cancel). A slave whose every listed candidate — within one
+// depth or not, so none can come near unproven — certifies with the same 1e-9 depth (a + b)
+// margin up to δ keeps the certificate while the travel (Σ over evaluations of the largest
+// step of any surface node, an upper bound of every node's displacement since) has grown by
+// less than δ, and until the list is rebuilt. Such a slave is passed over with no refresh
+// and no test of its candidates; the remembered-pair and ω² conditions are checked afresh.
+//
 // Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
 // refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
 // acting past the reach until its gap opens, its neighbourhood of pieces deciding over the
@@ -158,6 +172,11 @@ class SurfaceContact {
   long spared_slaves() const;
   // Off: every listed slave is projected (the reference path of the tests); on by default.
   void set_spare_open_slaves(bool on) { spare_open_ = on; }
+  // Slaves of the last evaluation passed over on a certificate carried from an earlier one
+  // (header: "Carried over evaluations"; all passes; not counted in spared_slaves()).
+  long carried_slaves() const;
+  // Off: certificates are formed afresh at every evaluation (h34's path); on by default.
+  void set_carry_open_slaves(bool on) { carry_open_ = on; }
   // Passes that have candidates in the current list (the others find nothing), ascending.
   const std::vector<int>& busy_passes() const { return busy_passes_; }
   // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
@@ -182,6 +201,16 @@ class SurfaceContact {
   double depth_, skin_;
   std::vector<int> tracked_;                  // every node of every pass
   std::vector<Eigen::Vector2d> x_build_;      // their positions at the last build
+  std::vector<Eigen::Vector2d> x_last_;       // their positions at the last evaluation
+  // Σ over evaluations of the largest step of any tracked node since the last build (rounded
+  // up): no node has moved more than its growth between two evaluations.
+  double travel_ = 0;
+  // Per pass, per slave: the travel below which its open certificate holds (header: "Carried
+  // over evaluations"); −1 none. Cleared at every build (the candidates change).
+  std::vector<std::vector<double>> open_until_;
+  // Per pass, per piece: K_x = max over f of Σ_k |c_k(f)| and K_t = max Σ_k |c_k'(f)|, bounded
+  // from the coefficients (a node move δ moves x(f) at most δ K_x and x'(f) at most δ K_t).
+  std::vector<std::vector<std::array<double, 2>>> motion_gain_;
   bool built_ = false;
   long rebuilds_ = 0;
   // Candidates: pass p, slave s → candidate_piece_[start_[p][s] .. start_[p][s + 1]).
@@ -215,6 +244,10 @@ class SurfaceContact {
   // Whether a slave at (x, y) provably has a positive gap wherever its projection on the
   // piece ends (header: "Open slaves"); 1e-9 depth of margin over the rounding.
   static bool certified_open(const PieceCache& pc, double x, double y, double depth);
+  // The largest node displacement δ up to which certified_open() provably still holds for
+  // this slave and piece (header: "Carried over evaluations"), rounded down; 0 if none.
+  static double open_budget(const PieceCache& pc, const std::array<double, 2>& gain, double x, double y,
+                            double depth);
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
   std::vector<int> busy_passes_;
@@ -230,10 +263,12 @@ class SurfaceContact {
     std::vector<Hit> hits;
     double near_omega2 = 0;
     int near_node = -1;
-    long spared = 0;  // slaves not projected (certified open)
+    long spared = 0;   // slaves not projected (certified open)
+    long carried = 0;  // slaves passed over on a carried certificate
   };
   std::vector<PassFound> found_;
   bool spare_open_ = true;
+  bool carry_open_ = true;
   ContactArrival arrival_;
 };
 

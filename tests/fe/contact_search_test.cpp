@@ -434,3 +434,78 @@ TEST(ContactSearch, SparedOpenSlavesChangeNothing) {
   EXPECT_GT(spared, 100);      // slaves were spared (173 of 1 246 ring↔ring slaves): not vacuous
   EXPECT_EQ(spared_by_reference, 0);
 }
+
+// Certificates carried over evaluations (ring_pair_contact.hpp, "Carried over evaluations"):
+// ring 2 creeps toward ring 1 by small steps (every node jittered afresh by 0.002 depth at each
+// step, ring 3's inner wall pushed through itself, random nodal masses), then jumps 0.11
+// depth into it — within the Verlet skin, so the list is not rebuilt and only the travel
+// budget can end the certificates of the slaves that now touch. Committed after every
+// evaluation. The carrying search is bitwise the search that certifies afresh at every
+// evaluation and the one that projects every listed slave, it carried slaves on the creep,
+// and after the jump it carried fewer and found the contact.
+TEST(ContactSearch, CarriedOpenCertificatesChangeNothing) {
+  long carried_creep = 0;
+  for (bool half : {true, false}) {
+    const Scene s = scene(3, half, 48);
+    const double depth = s.t.ring.element_depth;
+    std::mt19937 gen(half ? 11 : 12);
+    std::uniform_real_distribution<double> unit(0.5, 1.5), wiggle(-0.002 * depth, 0.002 * depth);
+    Eigen::VectorXd mass(2 * static_cast<Eigen::Index>(s.t.mesh.nodes.size()));
+    for (Eigen::Index i = 0; i < mass.size(); ++i) mass(i) = 1e-3 * unit(gen);
+    SurfaceContact carrying(s.passes, depth), fresh(s.passes, depth), every(s.passes, depth);
+    fresh.set_carry_open_slaves(false);
+    every.set_spare_open_slaves(false);
+    for (auto* c : {&carrying, &fresh, &every}) c->set_mass(mass);
+    const int creep = 12;
+    long carried_before_jump = 0;
+    for (int k = 0; k <= creep; ++k) {
+      const bool jump = k == creep;
+      const std::string where = (half ? "half rings, step " : "full rings, step ") + std::to_string(k);
+      // Ring 2 from 0.08 depth apart, 0.001 depth closer per step, then 0.11 depth in one step.
+      const double dy = (jump ? 0.03 : -0.08 + 0.001 * k) * depth;
+      auto x = configuration(s, 1, dy, 0.2 * depth, 0.05 * depth, 3);
+      for (auto& p : x) {
+        if (std::abs(p.x()) > 1e-15) p.x() += wiggle(gen);
+        p.y() += wiggle(gen);
+      }
+      std::vector<ContactContribution> a, b, c;
+      std::vector<std::pair<int, double>> pa, pb, pc;
+      SurfaceContactState sa, sb, sc;
+      carrying.evaluate(x, false, a, &pa, sa);
+      fresh.evaluate(x, false, b, &pb, sb);
+      every.evaluate(x, false, c, &pc, sc);
+      EXPECT_EQ(fresh.carried_slaves(), 0) << where;
+      EXPECT_EQ(every.carried_slaves(), 0) << where;
+      expect_same(a, b, where);
+      expect_same(a, c, where + " (every slave projected)");
+      EXPECT_EQ(pa, pb) << where;
+      EXPECT_EQ(pa, pc) << where;
+      for (const auto* st : {&sb, &sc}) {
+        EXPECT_EQ(sa.energy, st->energy) << where;
+        EXPECT_EQ(sa.ring_ring_force, st->ring_ring_force) << where;
+        EXPECT_EQ(sa.self_force, st->self_force) << where;
+        EXPECT_EQ(sa.max_penetration, st->max_penetration) << where;
+        EXPECT_EQ(sa.deepest_node, st->deepest_node) << where;
+        EXPECT_EQ(sa.active, st->active) << where;
+        EXPECT_EQ(sa.near_omega2, st->near_omega2) << where;
+        EXPECT_EQ(sa.near_node, st->near_node) << where;
+      }
+      EXPECT_GT(sa.self_force, 0.0) << where;  // the inner wall acts throughout
+      if (jump) {
+        EXPECT_GT(sa.ring_ring_force, 0.0) << where;  // the certificates' slaves now touch
+        EXPECT_LT(carrying.carried_slaves(), carried_before_jump) << where;
+      } else {
+        EXPECT_EQ(sa.ring_ring_force, 0.0) << where;
+        carried_creep += carrying.carried_slaves();
+        carried_before_jump = carrying.carried_slaves();
+      }
+      for (auto* e : {&carrying, &fresh, &every}) e->commit();
+      for (std::size_t p = 0; p < s.passes.size(); ++p)
+        for (std::size_t sl = 0; sl < s.passes[p].slaves.size(); ++sl)
+          EXPECT_EQ(carrying.arrival().remembered_piece(p, sl), fresh.arrival().remembered_piece(p, sl)) << where;
+    }
+    // One build: the budget, not a rebuild, ended the certificates at the jump.
+    EXPECT_EQ(carrying.rebuilds(), 1) << (half ? "half" : "full");
+  }
+  EXPECT_GT(carried_creep, 200);  // not vacuous
+}
