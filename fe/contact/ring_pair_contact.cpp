@@ -496,19 +496,30 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
 void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
   bool stale = !built_;
   const double skin2 = skin_ * skin_;
+  const bool carry = spare_open_ && carry_open_;
   double step2 = 0;  // largest squared step of a tracked node since the last evaluation
-  for (std::size_t i = 0; i < tracked_.size() && !stale; ++i) {
-    const Eigen::Vector2d& xi = x[tracked_[i]];
-    stale = (xi - x_build_[i]).squaredNorm() >= skin2;
-    step2 = std::max(step2, (xi - x_last_[i]).squaredNorm());
-    x_last_[i] = xi;
+  if (carry) {
+    for (std::size_t i = 0; i < tracked_.size() && !stale; ++i) {
+      const Eigen::Vector2d& xi = x[tracked_[i]];
+      stale = (xi - x_build_[i]).squaredNorm() >= skin2;
+      step2 = std::max(step2, (xi - x_last_[i]).squaredNorm());
+      x_last_[i] = xi;
+    }
+  } else {
+    for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
+      stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
   }
   if (stale) {
     rebuild(x);  // clears the travel and the carried certificates
-  } else {
+  } else if (carry && last_known_) {
     // Rounded up by a relative 1e-12 (a difference, a square root and a sum: ~1e-15).
     travel_ += std::sqrt(step2) * (1 + 1e-12);
+  } else if (carry) {
+    // Carrying just switched on: x_last_ was not kept, so no certificate can be trusted.
+    travel_ = 0;
+    for (auto& until : open_until_) std::fill(until.begin(), until.end(), -1.0);
   }
+  last_known_ = carry;
   ++stamp_;
   if (found_.size() != passes_.size()) found_.resize(passes_.size());
   for (auto& r : found_) {
@@ -541,8 +552,6 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       continue;
     }
     const Eigen::Vector2d& xs = x[node];
-    // The budget of a carried certificate: the least over every listed candidate.
-    double budget = carry ? std::numeric_limits<double>::infinity() : 0.0;
     int best = -1;
     double best_abs = depth_, best_f = 0, best_gap = 0;
     // Candidates within one depth of the curve's box, with that distance as a lower bound
@@ -575,7 +584,6 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       const int q = candidate_piece_[c];
       PieceCache& pc = cache_[pi][q];
       if (pc.stamp != stamp_) refresh(pi, q, x);
-      if (budget > 0) budget = std::min(budget, open_budget(pc, gains[q], xs.x(), xs.y(), depth_));
       double bound = -1.0;
       if (p.symmetric_end[q]) {
         const double* cb = pc.box;
@@ -595,7 +603,20 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
       else project(q);
     }
-    if (carry) open_until[s] = budget > 0 ? travel_ + budget : -1.0;
+    if (carry) {
+      // The budget of a carried certificate, the least over every listed candidate; formed
+      // only for a slave that could be passed over now (every candidate within one depth
+      // certified, ω² not above the pass's largest so far), which is mostly so next time.
+      double budget = 0;
+      if (open && !(slave_omega2_[pi][s] > found.near_omega2)) {
+        budget = std::numeric_limits<double>::infinity();
+        for (int c = start[s]; c < start[s + 1] && budget > 0; ++c) {
+          const int q = candidate_piece_[c];  // refreshed above
+          budget = std::min(budget, open_budget(cache_[pi][q], gains[q], xs.x(), xs.y(), depth_));
+        }
+      }
+      open_until[s] = budget > 0 ? travel_ + budget : -1.0;
+    }
     if (open && count > 0 && arrival_.remembered_piece(pi, s) < 0 && !(slave_omega2_[pi][s] > found.near_omega2)) {
       ++found.spared;
       continue;

@@ -50,6 +50,12 @@
 // step of any surface node, an upper bound of every node's displacement since) has grown by
 // less than δ, and until the list is rebuilt. Such a slave is passed over with no refresh
 // and no test of its candidates; the remembered-pair and ω² conditions are checked afresh.
+// Off by default (set_carry_open_slaves): thesis scene explicit, first 0.2 ms (callgrind,
+// README "Session 11", h38), it passed over 32 % of the slave visits and cut search() by
+// 26 M instructions with the budgets, but spared almost no piece refresh (every piece a
+// carried slave lists is also listed by one that is not) and no projection (those slaves were
+// spared already), while the travel costs 68 M (a second distance per surface node per
+// evaluation): +0.7 % in all.
 //
 // Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
 // refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
@@ -171,12 +177,14 @@ class SurfaceContact {
   // candidate pieces can give them a negative gap (certified_open(); all passes).
   long spared_slaves() const;
   // Off: every listed slave is projected (the reference path of the tests); on by default.
-  void set_spare_open_slaves(bool on) { spare_open_ = on; }
+  void set_spare_open_slaves(bool on) { spare_open_ = on; last_known_ = false; }
   // Slaves of the last evaluation passed over on a certificate carried from an earlier one
   // (header: "Carried over evaluations"; all passes; not counted in spared_slaves()).
   long carried_slaves() const;
-  // Off: certificates are formed afresh at every evaluation (h34's path); on by default.
-  void set_carry_open_slaves(bool on) { carry_open_ = on; }
+  // On: certificates are carried over evaluations (with spare_open_slaves on). Off by
+  // default: on the thesis scene it costs more than it saves (header: "Carried over
+  // evaluations"; README "Session 11", h38).
+  void set_carry_open_slaves(bool on) { carry_open_ = on; last_known_ = false; }
   // Passes that have candidates in the current list (the others find nothing), ascending.
   const std::vector<int>& busy_passes() const { return busy_passes_; }
   // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
@@ -201,7 +209,7 @@ class SurfaceContact {
   double depth_, skin_;
   std::vector<int> tracked_;                  // every node of every pass
   std::vector<Eigen::Vector2d> x_build_;      // their positions at the last build
-  std::vector<Eigen::Vector2d> x_last_;       // their positions at the last evaluation
+  std::vector<Eigen::Vector2d> x_last_;       // their positions at the last evaluation (if carrying)
   // Σ over evaluations of the largest step of any tracked node since the last build (rounded
   // up): no node has moved more than its growth between two evaluations.
   double travel_ = 0;
@@ -268,7 +276,8 @@ class SurfaceContact {
   };
   std::vector<PassFound> found_;
   bool spare_open_ = true;
-  bool carry_open_ = true;
+  bool carry_open_ = false;
+  bool last_known_ = false;  // x_last_ holds the last evaluation's positions
   ContactArrival arrival_;
 };
 
