@@ -50,12 +50,15 @@
 // step of any surface node, an upper bound of every node's displacement since) has grown by
 // less than δ, and until the list is rebuilt. Such a slave is passed over with no refresh
 // and no test of its candidates; the remembered-pair and ω² conditions are checked afresh.
+// A slave with no candidate within one depth is carried the same way on far_budget() (every
+// candidate stays beyond one depth by search()'s test, allowing for the chord frame's turn),
+// with no ω² condition: it is near nothing.
 // Off by default (set_carry_open_slaves): thesis scene explicit, first 0.2 ms (callgrind,
-// README "Session 11", h38), it passed over 32 % of the slave visits and cut search() by
-// 26 M instructions with the budgets, but spared almost no piece refresh (every piece a
-// carried slave lists is also listed by one that is not) and no projection (those slaves were
-// spared already), while the travel costs 68 M (a second distance per surface node per
-// evaluation): +0.7 % in all.
+// README "Session 11", h38), it passed over 38 % of the slave visits, but the budgets are
+// short (≈ 8–10 µm against a largest step of ≈ 2 µm), so it spared no piece refresh (every
+// piece a carried slave lists is also listed by one whose certificate has just run out) and no
+// projection (those slaves were spared already), while the travel costs 64 M instructions (a
+// second distance per surface node per evaluation): +1.7 % in all.
 //
 // Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
 // refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
@@ -216,6 +219,9 @@ class SurfaceContact {
   // Per pass, per slave: the travel below which its open certificate holds (header: "Carried
   // over evaluations"); −1 none. Cleared at every build (the candidates change).
   std::vector<std::vector<double>> open_until_;
+  // Per pass, per slave: the carried certificate has every candidate out of reach (so the
+  // slave finds nothing and is near nothing: no ω² condition).
+  std::vector<std::vector<unsigned char>> far_only_;
   // Per pass, per piece: K_x = max over f of Σ_k |c_k(f)| and K_t = max Σ_k |c_k'(f)|, bounded
   // from the coefficients (a node move δ moves x(f) at most δ K_x and x'(f) at most δ K_t).
   std::vector<std::vector<std::array<double, 2>>> motion_gain_;
@@ -247,6 +253,7 @@ class SurfaceContact {
     // Bounds of the tangent x'(f) in the chord frame over the piece: x'·t ≥ along_min,
     // |x'·n| ≤ across_max (the certificate of an open gap, certified_open()).
     double along_min, across_max;
+    double chord;           // |x(hi) − x(lo)| (the frame's turn under a move, far_budget())
     unsigned stamp = 0;
   };
   // Whether a slave at (x, y) provably has a positive gap wherever its projection on the
@@ -256,6 +263,11 @@ class SurfaceContact {
   // this slave and piece (header: "Carried over evaluations"), rounded down; 0 if none.
   static double open_budget(const PieceCache& pc, const std::array<double, 2>& gain, double x, double y,
                             double depth);
+  // The largest node displacement δ up to which the piece provably stays out of the slave's
+  // reach by search()'s test (one depth beyond its box across or along its chord frame, or
+  // its x–y box at a symmetry plane) — header: "Carried over evaluations"; 0 if none.
+  static double far_budget(const PieceCache& pc, const std::array<double, 2>& gain, bool symmetric, double x,
+                           double y, double depth);
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
   std::vector<int> busy_passes_;
