@@ -309,25 +309,6 @@ SurfaceContact::SurfaceContact(std::vector<ContactPass> passes, double depth, do
   }
   slave_omega2_.resize(passes_.size());
   for (std::size_t p = 0; p < passes_.size(); ++p) slave_omega2_[p].assign(passes_[p].slaves.size(), 0.0);
-  x_last_.resize(tracked_.size());
-  open_until_.resize(passes_.size());
-  for (std::size_t p = 0; p < passes_.size(); ++p) {
-    open_until_[p].assign(passes_[p].slaves.size(), -1.0);
-    far_only_.emplace_back(passes_[p].slaves.size(), 0);
-    // |c_k(f)| ≤ Σ_q |a_kq| F^q and |c_k'(f)| ≤ |a_k1| + 2|a_k2| F + 3|a_k3| F² over |f| ≤ F;
-    // rounded up by a relative 1e-12.
-    auto& gains = motion_gain_.emplace_back();
-    for (const auto& poly : poly_[p]) {
-      const double F = std::max(std::abs(poly.lo), std::abs(poly.hi));
-      double kx = 0, kt = 0;
-      for (int k = 0; k < poly.count; ++k) {
-        const double* c = poly.a[k];
-        kx += std::abs(c[0]) + F * (std::abs(c[1]) + F * (std::abs(c[2]) + F * std::abs(c[3])));
-        kt += std::abs(c[1]) + F * (2 * std::abs(c[2]) + 3 * F * std::abs(c[3]));
-      }
-      gains.push_back({kx * (1 + 1e-12), kt * (1 + 1e-12)});
-    }
-  }
 }
 
 void SurfaceContact::set_mass(const Eigen::VectorXd& mass) {
@@ -348,10 +329,6 @@ void SurfaceContact::rebuild(const std::vector<Eigen::Vector2d>& x) {
   ++rebuilds_;
   built_ = true;
   for (std::size_t i = 0; i < tracked_.size(); ++i) x_build_[i] = x[tracked_[i]];
-  // The candidates change: no certificate is carried across a build.
-  x_last_ = x_build_;
-  travel_ = 0;
-  for (auto& until : open_until_) std::fill(until.begin(), until.end(), -1.0);
   candidate_piece_.clear();
   busy_passes_.clear();
   std::vector<std::array<double, 4>> box;  // padded piece boxes (lo x, hi x, lo y, hi y)
@@ -437,7 +414,6 @@ void SurfaceContact::refresh(std::size_t pass, int piece, const std::vector<Eige
   cubic.at(poly.lo, pos0, tan, curv);
   cubic.at(poly.hi, pos1, tan, curv);
   const double cx = pos1[0] - pos0[0], cy = pos1[1] - pos0[1], chord = std::sqrt(cx * cx + cy * cy);
-  pc.chord = chord;
   pc.t[0] = chord > 0 ? cx / chord : 1.0;
   pc.t[1] = chord > 0 ? cy / chord : 0.0;
   const double tx = pc.t[0], ty = pc.t[1];
@@ -467,50 +443,6 @@ bool SurfaceContact::certified_open(const PieceCache& pc, double x, double y, do
   return dv * a - du * b > 1e-9 * depth * (a + b);
 }
 
-double SurfaceContact::open_budget(const PieceCache& pc, const std::array<double, 2>& gain, double x, double y,
-                                   double depth) {
-  // certified_open()'s terms at this evaluation, in its chord frame (kept for the bound).
-  const double a = pc.along_min, b = pc.across_max;
-  if (!(a > 0)) return 0;
-  const double along = x * pc.t[0] + y * pc.t[1], across = y * pc.t[0] - x * pc.t[1];
-  const double dv = across - pc.range[3];
-  if (!(dv > 0)) return 0;
-  const double du = std::max(along - pc.range[0], pc.range[1] - along);
-  // After moves of at most δ (header: "Carried over evaluations"): dv a − du b ≥ slack − δ rate
-  // must stay above the margin 1e-9 depth (a + b) with a + b ≤ a₀ + b₀ + 2 δ K_t, and dv, a
-  // positive.
-  const double P = 1 + gain[0], Q = gain[1];
-  const double slack = dv * a - du * b - 1e-9 * depth * (a + b);
-  if (!(slack > 0)) return 0;
-  const double rate = P * (a + b) + Q * (du + dv) + 2e-9 * depth * Q;
-  // Rounded down by a relative 1e-6 (the rounding of these few operations is ~1e-15).
-  return std::min({slack / rate, dv / P, a / Q}) * (1 - 1e-6);
-}
-
-double SurfaceContact::far_budget(const PieceCache& pc, const std::array<double, 2>& gain, bool symmetric, double x,
-                                  double y, double depth) {
-  // search()'s test passes with e ≥ depth; e loses at most δ (1 + K_x) to the moves of the
-  // slave and the curve, and in the chord frame also D |t − t₀| ≤ D 4 δ K_x / chord for the
-  // frame's turn (the chord moves at most 2 δ K_x; D bounds |x_s − x(f)| over the old box).
-  // Kept while e stays above depth by 1e-9 depth (the rounding of the ranges and of the test).
-  const double need = depth * (1 + 1e-9);
-  if (symmetric) {
-    const double dx = std::max({pc.box[0] - x, 0.0, x - pc.box[1]}), dy = std::max({pc.box[2] - y, 0.0, y - pc.box[3]});
-    const double e = std::max(dx, dy);
-    return e > need ? (e - need) / (1 + gain[0]) * (1 - 1e-6) : 0.0;
-  }
-  if (!(pc.chord > 0)) return 0;
-  const double along = x * pc.t[0] + y * pc.t[1], across = y * pc.t[0] - x * pc.t[1];
-  const double du = std::max({pc.range[0] - along, 0.0, along - pc.range[1]});
-  const double dv = std::max({pc.range[2] - across, 0.0, across - pc.range[3]});
-  const double e = std::max(du, dv);
-  if (!(e > need)) return 0;
-  const double Du = std::max(std::abs(along - pc.range[0]), std::abs(along - pc.range[1]));
-  const double Dv = std::max(std::abs(across - pc.range[2]), std::abs(across - pc.range[3]));
-  const double D = std::sqrt(Du * Du + Dv * Dv);
-  return (e - need) / (1 + gain[0] + 4 * gain[0] * D / pc.chord) * (1 - 1e-6);
-}
-
 void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_tangent,
                               std::vector<ContactContribution>& out, std::vector<std::pair<int, double>>* pressure,
                               SurfaceContactState& st) {
@@ -522,30 +454,9 @@ void SurfaceContact::evaluate(const std::vector<Eigen::Vector2d>& x, bool want_t
 void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
   bool stale = !built_;
   const double skin2 = skin_ * skin_;
-  const bool carry = spare_open_ && carry_open_;
-  double step2 = 0;  // largest squared step of a tracked node since the last evaluation
-  if (carry) {
-    for (std::size_t i = 0; i < tracked_.size() && !stale; ++i) {
-      const Eigen::Vector2d& xi = x[tracked_[i]];
-      stale = (xi - x_build_[i]).squaredNorm() >= skin2;
-      step2 = std::max(step2, (xi - x_last_[i]).squaredNorm());
-      x_last_[i] = xi;
-    }
-  } else {
-    for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
-      stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
-  }
-  if (stale) {
-    rebuild(x);  // clears the travel and the carried certificates
-  } else if (carry && last_known_) {
-    // Rounded up by a relative 1e-12 (a difference, a square root and a sum: ~1e-15).
-    travel_ += std::sqrt(step2) * (1 + 1e-12);
-  } else if (carry) {
-    // Carrying just switched on: x_last_ was not kept, so no certificate can be trusted.
-    travel_ = 0;
-    for (auto& until : open_until_) std::fill(until.begin(), until.end(), -1.0);
-  }
-  last_known_ = carry;
+  for (std::size_t i = 0; i < tracked_.size() && !stale; ++i)
+    stale = (x[tracked_[i]] - x_build_[i]).squaredNorm() >= skin2;
+  if (stale) rebuild(x);
   ++stamp_;
   if (found_.size() != passes_.size()) found_.resize(passes_.size());
   for (auto& r : found_) {
@@ -553,7 +464,6 @@ void SurfaceContact::begin(const std::vector<Eigen::Vector2d>& x) {
     r.near_omega2 = 0;
     r.near_node = -1;
     r.spared = 0;
-    r.carried = 0;
   }
   arrival_.begin();
 }
@@ -564,20 +474,9 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
   PassFound& found = found_[pi];
   const ArcTaper taper(p.self ? p.min_separation : 0.0, p.self ? p.taper_band : 0.0);
   double xy[12];
-  const bool carry = spare_open_ && carry_open_;
-  auto& open_until = open_until_[pi];
-  auto& far_only = far_only_[pi];
-  const auto& gains = motion_gain_[pi];
   for (const int si : near_slaves_[pi]) {
     const auto s = static_cast<std::size_t>(si);
     const int node = p.slaves[s];
-    // Certified open at an earlier evaluation with a budget not yet spent (header: "Carried
-    // over evaluations"): nothing to find, and as for a spared slave, nothing to change.
-    if (carry && travel_ < open_until[s] && arrival_.remembered_piece(pi, s) < 0 &&
-        (far_only[s] || !(slave_omega2_[pi][s] > found.near_omega2))) {
-      ++found.carried;
-      continue;
-    }
     const Eigen::Vector2d& xs = x[node];
     int best = -1;
     double best_abs = depth_, best_f = 0, best_gap = 0;
@@ -629,33 +528,6 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
       if (open) open = certified_open(pc, xs.x(), xs.y(), depth_);
       if (count < static_cast<int>(near.size())) near[count++] = {bound, q};
       else project(q);
-    }
-    if (carry) {
-      // The budget of a carried certificate, the least over every listed candidate; formed
-      // only for a slave that could be passed over now (every candidate within one depth
-      // certified, ω² not above the pass's largest so far), which is mostly so next time.
-      // Each candidate out of reach or certified open (a slave with none within one depth
-      // needs no ω² condition if all stay out of reach).
-      double budget = 0;
-      bool all_far = count == 0;
-      if (all_far || (open && !(slave_omega2_[pi][s] > found.near_omega2))) {
-        budget = std::numeric_limits<double>::infinity();
-        for (int c = start[s]; c < start[s + 1] && budget > 0; ++c) {
-          const int q = candidate_piece_[c];  // refreshed above
-          const PieceCache& pc = cache_[pi][q];
-          double b = far_budget(pc, gains[q], p.symmetric_end[q] != 0, xs.x(), xs.y(), depth_);
-          if (!(b > 0)) {
-            b = open_budget(pc, gains[q], xs.x(), xs.y(), depth_);
-            all_far = false;
-          }
-          budget = std::min(budget, b);
-        }
-        // A certificate that will need the ω² condition is kept only if the condition holds
-        // now (it mostly holds next time too; the others cost their forming for nothing).
-        if (!all_far && slave_omega2_[pi][s] > found.near_omega2) budget = 0;
-      }
-      open_until[s] = budget > 0 ? travel_ + budget : -1.0;
-      far_only[s] = all_far;
     }
     if (open && count > 0 && arrival_.remembered_piece(pi, s) < 0 && !(slave_omega2_[pi][s] > found.near_omega2)) {
       ++found.spared;
@@ -722,12 +594,6 @@ void SurfaceContact::search(std::size_t pi, const std::vector<Eigen::Vector2d>& 
 long SurfaceContact::spared_slaves() const {
   long n = 0;
   for (const auto& r : found_) n += r.spared;
-  return n;
-}
-
-long SurfaceContact::carried_slaves() const {
-  long n = 0;
-  for (const auto& r : found_) n += r.carried;
   return n;
 }
 

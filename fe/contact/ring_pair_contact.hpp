@@ -37,29 +37,6 @@
 // largest already found in its pass (so whether it is near changes nothing), adds nothing and
 // changes nothing: it is not projected (bitwise the full search; test).
 //
-// Carried over evaluations (issue 4 performance; README "Session 11"): the certificate is
-// a bound, so it survives motion. In the chord frame (t, n) of the evaluation that formed it,
-// the cross product x'(f) × (x_s − x(f)) = (x'·t)(v_s − v(f)) − (x'·n)(u_s − u(f)) holds in
-// any orthonormal frame; if no node of the slave or the piece has moved more than δ since,
-// x(f) has moved at most δ K_x and x'(f) at most δ K_t (K the sums of the magnitudes of the
-// piece's shape-function coefficients), so dv ≥ dv₀ − δ(1 + K_x), du ≤ du₀ + δ(1 + K_x),
-// a ≥ a₀ − δ K_t, b ≤ b₀ + δ K_t, and dv a − du b ≥ dv₀ a₀ − du₀ b₀ − δ((1 + K_x)(a₀ + b₀)
-// + K_t(du₀ + dv₀)) (the δ² terms cancel). A slave whose every listed candidate — within one
-// depth or not, so none can come near unproven — certifies with the same 1e-9 depth (a + b)
-// margin up to δ keeps the certificate while the travel (Σ over evaluations of the largest
-// step of any surface node, an upper bound of every node's displacement since) has grown by
-// less than δ, and until the list is rebuilt. Such a slave is passed over with no refresh
-// and no test of its candidates; the remembered-pair and ω² conditions are checked afresh.
-// A slave with no candidate within one depth is carried the same way on far_budget() (every
-// candidate stays beyond one depth by search()'s test, allowing for the chord frame's turn),
-// with no ω² condition: it is near nothing.
-// Off by default (set_carry_open_slaves): thesis scene explicit, first 0.2 ms (callgrind,
-// README "Session 11", h38), it passed over 38 % of the slave visits, but the budgets are
-// short (≈ 8–10 µm against a largest step of ≈ 2 µm), so it spared no piece refresh (every
-// piece a carried slave lists is also listed by one whose certificate has just run out) and no
-// projection (those slaves were spared already), while the travel costs 64 M instructions (a
-// second distance per surface node per evaluation): +1.7 % in all.
-//
 // Arrival rule (contact_arrival.hpp): a pair first seen deeper than the arrival depth is
 // refused; an acting pair is remembered (committed with the accepted step, commit()) and keeps
 // acting past the reach until its gap opens, its neighbourhood of pieces deciding over the
@@ -180,14 +157,7 @@ class SurfaceContact {
   // candidate pieces can give them a negative gap (certified_open(); all passes).
   long spared_slaves() const;
   // Off: every listed slave is projected (the reference path of the tests); on by default.
-  void set_spare_open_slaves(bool on) { spare_open_ = on; last_known_ = false; }
-  // Slaves of the last evaluation passed over on a certificate carried from an earlier one
-  // (header: "Carried over evaluations"; all passes; not counted in spared_slaves()).
-  long carried_slaves() const;
-  // On: certificates are carried over evaluations (with spare_open_slaves on). Off by
-  // default: on the thesis scene it costs more than it saves (header: "Carried over
-  // evaluations"; README "Session 11", h38).
-  void set_carry_open_slaves(bool on) { carry_open_ = on; last_known_ = false; }
+  void set_spare_open_slaves(bool on) { spare_open_ = on; }
   // Passes that have candidates in the current list (the others find nothing), ascending.
   const std::vector<int>& busy_passes() const { return busy_passes_; }
   // Makes the pairs of the last evaluate() the remembered ones (contact_arrival.hpp; call it
@@ -212,19 +182,6 @@ class SurfaceContact {
   double depth_, skin_;
   std::vector<int> tracked_;                  // every node of every pass
   std::vector<Eigen::Vector2d> x_build_;      // their positions at the last build
-  std::vector<Eigen::Vector2d> x_last_;       // their positions at the last evaluation (if carrying)
-  // Σ over evaluations of the largest step of any tracked node since the last build (rounded
-  // up): no node has moved more than its growth between two evaluations.
-  double travel_ = 0;
-  // Per pass, per slave: the travel below which its open certificate holds (header: "Carried
-  // over evaluations"); −1 none. Cleared at every build (the candidates change).
-  std::vector<std::vector<double>> open_until_;
-  // Per pass, per slave: the carried certificate has every candidate out of reach (so the
-  // slave finds nothing and is near nothing: no ω² condition).
-  std::vector<std::vector<unsigned char>> far_only_;
-  // Per pass, per piece: K_x = max over f of Σ_k |c_k(f)| and K_t = max Σ_k |c_k'(f)|, bounded
-  // from the coefficients (a node move δ moves x(f) at most δ K_x and x'(f) at most δ K_t).
-  std::vector<std::vector<std::array<double, 2>>> motion_gain_;
   bool built_ = false;
   long rebuilds_ = 0;
   // Candidates: pass p, slave s → candidate_piece_[start_[p][s] .. start_[p][s + 1]).
@@ -253,21 +210,11 @@ class SurfaceContact {
     // Bounds of the tangent x'(f) in the chord frame over the piece: x'·t ≥ along_min,
     // |x'·n| ≤ across_max (the certificate of an open gap, certified_open()).
     double along_min, across_max;
-    double chord;           // |x(hi) − x(lo)| (the frame's turn under a move, far_budget())
     unsigned stamp = 0;
   };
   // Whether a slave at (x, y) provably has a positive gap wherever its projection on the
   // piece ends (header: "Open slaves"); 1e-9 depth of margin over the rounding.
   static bool certified_open(const PieceCache& pc, double x, double y, double depth);
-  // The largest node displacement δ up to which certified_open() provably still holds for
-  // this slave and piece (header: "Carried over evaluations"), rounded down; 0 if none.
-  static double open_budget(const PieceCache& pc, const std::array<double, 2>& gain, double x, double y,
-                            double depth);
-  // The largest node displacement δ up to which the piece provably stays out of the slave's
-  // reach by search()'s test (one depth beyond its box across or along its chord frame, or
-  // its x–y box at a symmetry plane) — header: "Carried over evaluations"; 0 if none.
-  static double far_budget(const PieceCache& pc, const std::array<double, 2>& gain, bool symmetric, double x,
-                           double y, double depth);
   std::vector<std::vector<PieceCache>> cache_;
   unsigned stamp_ = 0;
   std::vector<int> busy_passes_;
@@ -283,13 +230,10 @@ class SurfaceContact {
     std::vector<Hit> hits;
     double near_omega2 = 0;
     int near_node = -1;
-    long spared = 0;   // slaves not projected (certified open)
-    long carried = 0;  // slaves passed over on a carried certificate
+    long spared = 0;  // slaves not projected (certified open)
   };
   std::vector<PassFound> found_;
   bool spare_open_ = true;
-  bool carry_open_ = false;
-  bool last_known_ = false;  // x_last_ holds the last evaluation's positions
   ContactArrival arrival_;
 };
 
