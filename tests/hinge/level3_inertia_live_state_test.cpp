@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "chain_fixtures.hpp"
+#include "level3_ring_fixtures.hpp"
 #include "hinge/level3_mechanism.hpp"
 
 using namespace ringcrush;
@@ -17,17 +18,9 @@ using namespace ringcrush::hinge;
 
 namespace {
 
-// Test 30's ring (chain_fixtures.hpp) as a Level 3 ring with the same M0, k and mass.
+// Test 30's chain with its rings' mass (level3_ring_fixtures.hpp).
 Level3Input test30_level3(double velocity, bool inertia) {
-  const RingLaw law = hinge::testing::test30_ring();
-  Level3Input in;
-  in.rings = 6;
-  in.ring = {law.outer_diameter_m, law.wall_thickness_m, law.plastic_moment_nm, law.hardening_k()};
-  in.impactor_mass_kg = 0.257;
-  in.impactor_velocity_m_s = velocity;
-  in.inertia = inertia;
-  in.ring_mass_kg = inertia ? law.mass_kg : 0.0;
-  return in;
+  return hinge::testing::test30_level3_chain(velocity, false, inertia);
 }
 
 // The bench's tolerances (bench-level3: rtol 1e-8, atol rtol/100).

@@ -1,7 +1,9 @@
 // The Test 30 ring as a rigid-perfectly-plastic Level 3 ring, and its uniformly crushed shape:
-// shared by the statics-check tests with and without ring inertia, and their plated chain.
+// shared by the statics-check tests with and without ring inertia, and their plated chain; and
+// Test 30's six-ring chain with the hardening ring (the inertia tests).
 #pragma once
 
+#include "chain_fixtures.hpp"
 #include "hinge/level3_mechanism.hpp"
 
 namespace ringcrush::hinge::testing {
@@ -24,6 +26,21 @@ inline Level3Input plated_three_rings() {
   in.plates = true;
   in.impactor_mass_kg = 0.257;
   in.impactor_velocity_m_s = 20.0;
+  return in;
+}
+
+// Test 30's chain (six rings, 0.257 kg) of the hardening ring of chain_fixtures.hpp (the same
+// M0, k and mass) at `velocity`; the rings carry their mass when `inertia` is set.
+inline Level3Input test30_level3_chain(double velocity, bool plates, bool inertia) {
+  const RingLaw law = test30_ring();
+  Level3Input in;
+  in.rings = 6;
+  in.ring = {law.outer_diameter_m, law.wall_thickness_m, law.plastic_moment_nm, law.hardening_k()};
+  in.plates = plates;
+  in.impactor_mass_kg = 0.257;
+  in.impactor_velocity_m_s = velocity;
+  in.inertia = inertia;
+  in.ring_mass_kg = inertia ? law.mass_kg : 0.0;
   return in;
 }
 

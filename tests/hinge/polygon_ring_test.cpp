@@ -9,6 +9,7 @@
 
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/ring_laws.hpp"
+#include "polygon_diametral_stiffness.hpp"
 #include "quasi_static_ring.hpp"
 
 using namespace ringcrush::hinge;
@@ -24,32 +25,7 @@ PolygonChainInput test30_ring(int nodes) {
 
 const RingSection& section = plates_crush::test30_section;
 
-// Diametral stiffness of the half model: the top node loaded, the bottom node held; K by
-// finite differences of the generalised forces (perturbing away from the plates, which touch
-// with zero gap), then K u = f.
-double polygon_stiffness(int nodes) {
-  PolygonChain chain(test30_ring(nodes));
-  const auto y = chain.initial_state();
-  const int n = chain.independent_nodes();
-  std::vector<std::size_t> dofs;
-  for (int j = 0; j < n - 1; ++j) dofs.push_back(chain.node_offset(0, j) + 1);  // y, bottom held
-  for (int j = 1; j < n - 1; ++j) dofs.push_back(chain.node_offset(0, j));      // x, off the axis
-  const auto m = static_cast<Eigen::Index>(dofs.size());
-  Eigen::MatrixXd K(m, m);
-  std::vector<double> f0(chain.size()), f1(chain.size());
-  chain.generalised_forces(0.0, y.data(), f0.data());
-  const double h = -1e-9;
-  for (Eigen::Index a = 0; a < m; ++a) {
-    auto yy = y;
-    yy[dofs[a]] += h;
-    chain.generalised_forces(0.0, yy.data(), f1.data());
-    for (Eigen::Index b = 0; b < m; ++b) K(b, a) = -(f1[dofs[b] + 2] - f0[dofs[b] + 2]) / h;
-  }
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(m);
-  f(0) = -0.5;  // half of a unit load: the half model carries half of everything on the axis
-  const Eigen::VectorXd u = K.partialPivLu().solve(f);
-  return 1.0 / -u(0);
-}
+double polygon_stiffness(int nodes) { return ringcrush::hinge::testing::polygon_diametral_stiffness(test30_ring(nodes)); }
 
 struct QuasiStatic {
   double mean_ratio;  // mean of P / P_DH over δ/d ∈ [0.2, 0.5]

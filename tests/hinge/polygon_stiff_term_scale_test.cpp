@@ -22,6 +22,7 @@
 #include "hinge/polygon_central_difference.hpp"
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/ring_laws.hpp"
+#include "polygon_diametral_stiffness.hpp"
 #include "two_ring_chain.hpp"
 
 using namespace ringcrush::hinge;
@@ -30,33 +31,12 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// Diametral stiffness of one half-model ring (as tests/hinge/polygon_ring_test.cpp): the top
-// node loaded, the bottom node held, K by differences of the generalised forces.
+// Diametral stiffness of one half-model ring with the membrane scaled (polygon_diametral_stiffness.hpp).
 double diametral_stiffness(double membrane_scale) {
   PolygonChainInput in;
   in.rings = 1;
   in.membrane_stiffness_scale = membrane_scale;
-  PolygonChain chain(in);
-  const auto y = chain.initial_state();
-  const int n = chain.independent_nodes();
-  std::vector<std::size_t> dofs;
-  for (int j = 0; j < n - 1; ++j) dofs.push_back(chain.node_offset(0, j) + 1);
-  for (int j = 1; j < n - 1; ++j) dofs.push_back(chain.node_offset(0, j));
-  const auto m = static_cast<Eigen::Index>(dofs.size());
-  Eigen::MatrixXd K(m, m);
-  std::vector<double> f0(chain.size()), f1(chain.size());
-  chain.generalised_forces(0.0, y.data(), f0.data());
-  const double h = -1e-9;
-  for (Eigen::Index a = 0; a < m; ++a) {
-    auto yy = y;
-    yy[dofs[a]] += h;
-    chain.generalised_forces(0.0, yy.data(), f1.data());
-    for (Eigen::Index b = 0; b < m; ++b) K(b, a) = -(f1[dofs[b] + 2] - f0[dofs[b] + 2]) / h;
-  }
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(m);
-  f(0) = -0.5;
-  const Eigen::VectorXd u = K.partialPivLu().solve(f);
-  return 1.0 / -u(0);
+  return ringcrush::hinge::testing::polygon_diametral_stiffness(in);
 }
 
 }  // namespace
