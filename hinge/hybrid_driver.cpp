@@ -157,13 +157,7 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   IdaStatistics st;
   long restarts = 0;
   for (const auto& [size, solver] : solvers) {
-    const auto s = solver->statistics();
-    st.steps += s.steps;
-    st.error_test_failures += s.error_test_failures;
-    st.nonlinear_convergence_failures += s.nonlinear_convergence_failures;
-    st.residual_evaluations += s.residual_evaluations;
-    st.jacobian_evaluations += s.jacobian_evaluations;
-    st.nonlinear_iterations += s.nonlinear_iterations;
+    st += solver->statistics();
     restarts += solver->restarts();
   }
   out.statistics = {st.steps, st.error_test_failures + st.nonlinear_convergence_failures,

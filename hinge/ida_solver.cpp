@@ -358,13 +358,7 @@ IdaStatistics IdaSolver::statistics() const {
   m.check(IDAGetNumNonlinSolvConvFails(m.ida, &s.nonlinear_convergence_failures),
           "IDAGetNumNonlinSolvConvFails");
   if (system_.root_count() > 0) m.check(IDAGetNumGEvals(m.ida, &s.root_evaluations), "IDAGetNumGEvals");
-  s.steps += b.steps;
-  s.residual_evaluations += b.residual_evaluations;
-  s.jacobian_evaluations += b.jacobian_evaluations;
-  s.nonlinear_iterations += b.nonlinear_iterations;
-  s.error_test_failures += b.error_test_failures;
-  s.nonlinear_convergence_failures += b.nonlinear_convergence_failures;
-  s.root_evaluations += b.root_evaluations;
+  s += b;
   return s;
 }
 

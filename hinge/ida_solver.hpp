@@ -51,6 +51,18 @@ struct IdaStatistics {
   long error_test_failures = 0;
   long nonlinear_convergence_failures = 0;
   long root_evaluations = 0;
+
+  // Counts of several runs (restarts, one solver per state size) add up.
+  IdaStatistics& operator+=(const IdaStatistics& o) {
+    steps += o.steps;
+    residual_evaluations += o.residual_evaluations;
+    jacobian_evaluations += o.jacobian_evaluations;
+    nonlinear_iterations += o.nonlinear_iterations;
+    error_test_failures += o.error_test_failures;
+    nonlinear_convergence_failures += o.nonlinear_convergence_failures;
+    root_evaluations += o.root_evaluations;
+    return *this;
+  }
 };
 
 class IdaSolver {
