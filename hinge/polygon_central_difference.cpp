@@ -20,13 +20,10 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
     throw std::invalid_argument("PolygonCentralDifference: state size " + std::to_string(y_.size()) +
                                 " is not the chain's " + std::to_string(chain.size()));
   // The kinematic pairs x′ = v: node (x, y) and free bodies' y. Axis nodes' x stays 0 (its
-  // force row is 0); the driven impactor's position follows the prescribed speed.
-  for (int r = 0; r < chain.ring_count(); ++r)
-    for (int j = 0; j < chain.independent_nodes(); ++j) {
-      const auto o = chain.node_offset(r, j);
-      position_rows_.insert(position_rows_.end(), {o, o + 1});
-      velocity_rows_.insert(velocity_rows_.end(), {o + 2, o + 3});
-    }
+  // force row is 0); the driven impactor's position follows the prescribed speed. The nodes'
+  // rows [x, y, vx, vy, θp, ā] follow each other from row 0 (node_offset), so the node pairs
+  // are walked as one strided range, not through index lists.
+  nodes_end_ = chain.node_offset(chain.ring_count() - 1, chain.independent_nodes() - 1) + 6;
   for (int b = 0; b < chain.body_count(); ++b) {
     if (b == 0 && chain.input().driven_impactor) continue;
     position_rows_.push_back(chain.body_offset(b));
@@ -41,17 +38,13 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   chain_.rhs_with_flow_update(t_, y_.data(), 0.0, a_.data(), no_work, stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
   if (options.implicit_ring_dampers) {
-    for (int r = 0; r < chain.ring_count(); ++r)
-      for (int j = 0; j < chain.independent_nodes(); ++j) {
-        const auto o = chain.node_offset(r, j);
-        node_velocity_rows_.insert(node_velocity_rows_.end(), {o + 2, o + 3});
-      }
     damper_.assign(y_.size(), 0.0);
     damper_next_.assign(y_.size(), 0.0);
     v_start_.assign(y_.size(), 0.0);
     v_half_.assign(y_.size(), 0.0);
     chain_.ring_damper_forces(y_.data(), y_.data(), damper_.data());
-    for (const auto i : node_velocity_rows_) a_[i] -= damper_[i] / chain_.mass_row(i);
+    for (std::size_t o = 2; o < nodes_end_; o += 6)
+      for (std::size_t i = o; i < o + 2; ++i) a_[i] -= damper_[i] / chain_.mass_row(i);
   }
   if (options.power_iteration_bound) {
     if (!(options.power_margin >= 1.0) || !(options.power_refresh_steps >= 1) ||
@@ -101,36 +94,57 @@ double PolygonCentralDifference::advance(double t_end) {
 
 void PolygonCentralDifference::step(double dt) {
   const std::size_t acc = chain_.accumulator_offset();
-  const std::size_t nv = velocity_rows_.size();
+  const std::size_t nb = velocity_rows_.size();
   const bool implicit = options_.implicit_ring_dampers;
+  double* y = y_.data();
+  const double* a = a_.data();
+  double* a_next = a_next_.data();
   if (implicit)
-    for (const auto i : node_velocity_rows_) v_start_[i] = y_[i];
-  for (std::size_t i = 0; i < nv; ++i) {
-    double& v = y_[velocity_rows_[i]];
-    v += 0.5 * dt * a_[velocity_rows_[i]];
-    y_[position_rows_[i]] += dt * v;
+    for (std::size_t o = 2; o < nodes_end_; o += 6) {
+      v_start_[o] = y[o];
+      v_start_[o + 1] = y[o + 1];
+    }
+  for (std::size_t o = 0; o < nodes_end_; o += 6)
+    for (std::size_t c = 0; c < 2; ++c) {
+      double& v = y[o + 2 + c];
+      v += 0.5 * dt * a[o + 2 + c];
+      y[o + c] += dt * v;
+    }
+  for (std::size_t i = 0; i < nb; ++i) {
+    double& v = y[velocity_rows_[i]];
+    v += 0.5 * dt * a[velocity_rows_[i]];
+    y[position_rows_[i]] += dt * v;
   }
   if (chain_.input().driven_impactor)  // y′ = −V(t) at the step's midpoint
-    y_[chain_.body_offset(0)] -= dt * chain_.impactor_velocity(t_ + 0.5 * dt, y_.data());
-  for (std::size_t k = 1; k < 4; ++k) y_[acc + k] += 0.5 * dt * a_[acc + k];
+    y[chain_.body_offset(0)] -= dt * chain_.impactor_velocity(t_ + 0.5 * dt, y);
+  for (std::size_t k = 1; k < 4; ++k) y[acc + k] += 0.5 * dt * a[acc + k];
 
   t_ += dt;
-  chain_.rhs_with_flow_update(t_, y_.data(), dt, a_next_.data(), y_[acc], stats_.min_flow_relaxation_s);
+  chain_.rhs_with_flow_update(t_, y, dt, a_next, y[acc], stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
-  if (implicit)
-    for (const auto i : node_velocity_rows_) v_half_[i] = y_[i];
-  for (std::size_t i = 0; i < nv; ++i) y_[velocity_rows_[i]] += 0.5 * dt * a_next_[velocity_rows_[i]];
-  for (std::size_t k = 1; k < 4; ++k) y_[acc + k] += 0.5 * dt * a_next_[acc + k];
+  for (std::size_t o = 2; o < nodes_end_; o += 6) {
+    if (implicit) {
+      v_half_[o] = y[o];
+      v_half_[o + 1] = y[o + 1];
+    }
+    y[o] += 0.5 * dt * a_next[o];
+    y[o + 1] += 0.5 * dt * a_next[o + 1];
+  }
+  for (std::size_t i = 0; i < nb; ++i) y[velocity_rows_[i]] += 0.5 * dt * a_next[velocity_rows_[i]];
+  for (std::size_t k = 1; k < 4; ++k) y[acc + k] += 0.5 * dt * a_next[acc + k];
   if (implicit) {
     // The node rows now hold the explicit prediction v*; (μ + ½Δt C) v = μ v*, and the
     // acceleration of the second half-kick (the next step's first) is (v_{n+1} − v_{n+½})/(½Δt).
-    chain_.ring_damper_step(y_.data(), 0.5 * dt, y_.data(), damper_next_.data());
+    chain_.ring_damper_step(y, 0.5 * dt, y, damper_next_.data());
+    const double* d = damper_.data();
+    const double* d_next = damper_next_.data();
     double work = 0.0;
-    for (const auto i : node_velocity_rows_) {
-      a_next_[i] = (y_[i] - v_half_[i]) / (0.5 * dt);
-      work += damper_[i] * (v_start_[i] + v_half_[i]) + damper_next_[i] * (v_half_[i] + y_[i]);
-    }
-    y_[acc + 2] += 0.25 * dt * work;
+    for (std::size_t o = 2; o < nodes_end_; o += 6)
+      for (std::size_t i = o; i < o + 2; ++i) {
+        a_next[i] = (y[i] - v_half_[i]) / (0.5 * dt);
+        work += d[i] * (v_start_[i] + v_half_[i]) + d_next[i] * (v_half_[i] + y[i]);
+      }
+    y[acc + 2] += 0.25 * dt * work;
     damper_.swap(damper_next_);
   }
   a_.swap(a_next_);

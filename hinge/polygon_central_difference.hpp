@@ -98,8 +98,8 @@ class PolygonCentralDifference {
   std::vector<double> y_, a_, a_next_;
   // Implicit dampers: C v at the step's start and end, v_n and v_{n+½} on the node rows.
   std::vector<double> damper_, damper_next_, v_start_, v_half_;
-  std::vector<std::size_t> node_velocity_rows_;
-  std::vector<std::size_t> velocity_rows_, position_rows_;  // kinematic pairs x′ = v
+  std::size_t nodes_end_ = 0;  // the node rows: 6 per node from row 0
+  std::vector<std::size_t> velocity_rows_, position_rows_;  // the free bodies' pairs x′ = v
   double dt_stable_ = 0.0;
   CentralDifferenceStatistics stats_;
   // power_iteration_bound: the estimator, ρ, the bound at its last refresh and the steps since.

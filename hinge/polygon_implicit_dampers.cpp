@@ -19,6 +19,7 @@
 // rows' first columns), so one factorisation costs O(N) either way.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -196,81 +197,109 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
   }
 }
 
+// One row i of the band Cholesky of μ + h C, for one ring: L(i, i − q) for q = B…1, then the
+// diagonal, the rows' entries at row[q R] (ring-interleaved, R rings; row i − q at row − 6 q R,
+// its 1/L(i−q, i−q) at inv − q R), and the forward substitution's z_i in b. B is the row's
+// bandwidth: 5 for a node's y row, 4 for its x row — its column i − 5 is the y of the node
+// three back, which no bar or hinge couples to it, and the factor keeps that zero. The
+// operations are those of the generic loop over q ≤ 5 in the same order; the terms left out
+// are products with that exact zero (the partial sums are never −0, so their bits are kept).
+// Returns whether the pivot was positive.
+namespace {
+
+template <int B>
+inline bool factor_row(const double* c, double h, double mass, double* row, double* inv, double* b,
+                       std::ptrdiff_t R) {
+  double l[B + 1];
+  for (int q = 0; q <= B; ++q) l[q] = h * c[q];
+  l[0] += mass;
+  for (int q = B; q >= 1; --q) {
+    const double* lj = row - 6 * q * R;
+    double s = l[q];
+    for (int m = q + 1; m <= B; ++m) s -= l[m] * lj[(m - q) * R];
+    l[q] = s * inv[-q * R];
+  }
+  double s = l[0];
+  for (int m = 1; m <= B; ++m) s -= l[m] * l[m];
+  const bool positive = s > 0.0;
+  l[0] = std::sqrt(s);
+  const double inv_i = 1.0 / l[0];
+  *inv = inv_i;
+  for (int q = 0; q <= B; ++q) row[q * R] = l[q];
+  double z = *b;
+  for (int m = 1; m <= B; ++m) z -= l[m] * b[-m * R];
+  *b = z * inv_i;
+  return positive;
+}
+
+// Row i of the backward substitution Lᵀ x = z: the column of L below the diagonal, L(i + m, i)
+// at row[(6 m + m) R]. B as above, of the rows below: a y row's column reaches the x row five
+// down only through that row's structural zero.
+template <int B>
+inline void back_row(const double* row, const double* inv, double* b, std::ptrdiff_t R) {
+  double s = *b;
+  for (int m = 1; m <= B; ++m) s -= row[7 * m * R] * b[m * R];
+  *b = s * *inv;
+}
+
+}  // namespace
+
 // All rings at once: the factorisation and the two substitutions are chains of dependent
 // operations (each row waits for the previous ones), so the rings' bands are interleaved
 // (ring index innermost) and the rings advance in lockstep — independent work for the
-// processor's pipelines and SIMD lanes (≈ 4× faster than ring after ring on Test 30).
+// processor's pipelines (≈ 4× faster than ring after ring on Test 30). A node's two rows are
+// one unrolled body per ring with its fixed bandwidths (factor_row), the forward substitution
+// fused into the factorisation; the pad rows (identity before the band, zero after it) stay
+// from the first call, so each call writes only the band.
 void PolygonChain::half_band_step(const double* y, double h, double* v, double* d) {
   const int n = 2 * n_ind_, R = n_rings_;
   const auto rows = static_cast<std::size_t>(n + 2 * kBand), ring_size = 6 * rows;
   const auto RR = static_cast<std::size_t>(R);
-  // Per ring, contiguous: kBand zero rows, the band C(i, i − q) at 6 i + q, kBand zero rows.
-  kv_band_c_.assign(ring_size * RR, 0.0);
-  for (int r = 0; r < R; ++r)
-    assemble_half_band(r, y, kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand);
-  // μ + h C interleaved, entry e of ring r at e R + r; the leading pad rows are I (so that
-  // the loops run a fixed kBand terms, the pads contributing zeros).
-  kv_band_l_.resize(ring_size * RR);
-  kv_inv_diag_.assign(rows * RR, 1.0);
-  kv_b_.assign(rows * RR, 0.0);
-  double* L = kv_band_l_.data();
-  for (std::size_t e = 0; e < ring_size; ++e)
-    for (std::size_t r = 0; r < RR; ++r) L[e * RR + r] = h * kv_band_c_[r * ring_size + e];
-  for (std::size_t i = 0; i < static_cast<std::size_t>(kBand); ++i)
-    for (std::size_t r = 0; r < RR; ++r) L[6 * i * RR + r] = 1.0;
-  L += 6 * kBand * RR;
+  if (kv_band_c_.size() != ring_size * RR) {
+    // Per ring, contiguous: kBand zero rows, the band C(i, i − q) at 6 i + q, kBand zero rows.
+    kv_band_c_.assign(ring_size * RR, 0.0);
+    // The factors interleaved, L(i, i − q) of ring r at (6 i + q) R + r: leading pad rows I,
+    // trailing ones 0, so that the fixed-width rows need no bounds.
+    kv_band_l_.assign(ring_size * RR, 0.0);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(kBand); ++i)
+      for (std::size_t r = 0; r < RR; ++r) kv_band_l_[6 * i * RR + r] = 1.0;
+    kv_inv_diag_.assign(rows * RR, 1.0);
+    kv_b_.assign(rows * RR, 0.0);
+  }
+  for (int r = 0; r < R; ++r) {
+    double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand;
+    std::fill(C, C + 6 * n, 0.0);
+    assemble_half_band(r, y, C);
+  }
+  const std::ptrdiff_t S = R;
+  double* L = kv_band_l_.data() + 6 * kBand * RR;
   double* b = kv_b_.data() + kBand * RR;
   double* inv = kv_inv_diag_.data() + kBand * RR;
-  for (int r = 0; r < R; ++r) {
-    const double* vr = v + node_offset(r, 0) + 2;  // ring row i ↦ vr[6 (i/2) + i%2]
-    for (int j = 0; j < n_ind_; ++j) {
-      const double m = mu_[node_offset(r, j) + 2];
-      const auto ix = static_cast<std::size_t>(2 * j) * RR + static_cast<std::size_t>(r), iy = ix + RR;
-      L[6 * static_cast<std::size_t>(2 * j) * RR + static_cast<std::size_t>(r)] += m;  // diagonal entries
-      L[6 * static_cast<std::size_t>(2 * j + 1) * RR + static_cast<std::size_t>(r)] += m;
-      b[ix] = (j == 0 || j == n_ind_ - 1) ? 0.0 : m * vr[6 * j];  // axis nodes' x stays 0
-      b[iy] = m * vr[6 * j + 1];
-    }
-  }
-  // Band Cholesky in place, L(i, i − q) of ring r at (6 i + q) R + r.
   bool definite = true;
-  for (int i = 0; i < n; ++i) {
-    double* li = L + 6 * static_cast<std::ptrdiff_t>(i) * R;
-    for (int q = kBand; q >= 1; --q) {
-      const double* lj = li - 6 * q * R;
-      const double* invj = inv + static_cast<std::ptrdiff_t>(i - q) * R;
-      for (int r = 0; r < R; ++r) {
-        double s = li[q * R + r];
-        for (int m = q + 1; m <= kBand; ++m) s -= li[m * R + r] * lj[(m - q) * R + r];
-        li[q * R + r] = s * invj[r];
-      }
-    }
-    double* invi = inv + static_cast<std::ptrdiff_t>(i) * R;
+  for (int j = 0; j < n_ind_; ++j) {
+    const bool axis = j == 0 || j == n_ind_ - 1;  // axis nodes' x stays 0
+    double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
+    double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
+    double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
-      double s = li[r];
-      for (int m = 1; m <= kBand; ++m) s -= li[m * R + r] * li[m * R + r];
-      definite = definite && s > 0.0;
-      li[r] = std::sqrt(s);
-      invi[r] = 1.0 / li[r];
+      const std::size_t o = node_offset(r, j) + 2;
+      const double m = mu_[o];
+      const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand + 12 * static_cast<std::size_t>(j);
+      bx[r] = axis ? 0.0 : m * v[o];
+      bx[S + r] = m * v[o + 1];
+      definite &= factor_row<4>(C, h, m, Lx + r, ix + r, bx + r, S);
+      definite &= factor_row<5>(C + 6, h, m, Lx + 6 * S + r, ix + S + r, bx + S + r, S);
     }
   }
   if (!definite)
     throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
-  for (int i = 0; i < n; ++i) {
-    const double* li = L + 6 * static_cast<std::ptrdiff_t>(i) * R;
-    double* bi = b + static_cast<std::ptrdiff_t>(i) * R;
+  for (int j = n_ind_ - 1; j >= 0; --j) {
+    const double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
+    double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
+    const double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
-      double s = bi[r];
-      for (int m = 1; m <= kBand; ++m) s -= li[m * R + r] * bi[r - m * R];
-      bi[r] = s * inv[i * R + r];
-    }
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    double* bi = b + static_cast<std::ptrdiff_t>(i) * R;
-    for (int r = 0; r < R; ++r) {
-      double s = bi[r];
-      for (int m = 1; m <= kBand; ++m) s -= L[(6 * (i + m) + m) * R + r] * bi[r + m * R];
-      bi[r] = s * inv[i * R + r];
+      back_row<4>(Lx + 6 * S + r, ix + S + r, bx + S + r, S);
+      back_row<5>(Lx + r, ix + r, bx + r, S);
     }
   }
   // v, and d = C v on each ring's band.
@@ -278,12 +307,14 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
     const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand;
     double* vr = v + node_offset(r, 0) + 2;
     double* dr = d + node_offset(r, 0) + 2;
-    auto x = [&](int i) { return b[static_cast<std::ptrdiff_t>(i) * R + r]; };
+    const double* x = b + r;
     for (int i = 0; i < n; ++i) {
-      double di = C[6 * i] * x(i);
-      for (int m = 1; m <= kBand; ++m) di += C[6 * i + m] * x(i - m) + C[6 * (i + m) + m] * x(i + m);
+      const double* xi = x + static_cast<std::ptrdiff_t>(i) * S;
+      const double* ci = C + 6 * i;
+      double di = ci[0] * xi[0];
+      for (int m = 1; m <= kBand; ++m) di += ci[m] * xi[-m * S] + ci[7 * m] * xi[m * S];
       const int at = 6 * (i / 2) + i % 2;
-      vr[at] = x(i);
+      vr[at] = xi[0];
       dr[at] = di;
     }
   }

@@ -39,29 +39,36 @@ double PolygonChain::stable_step(unsigned terms) const {
     const double xi = C / (2.0 * std::sqrt(K * mass));
     return 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
   };
+  auto node_step = [&](double w, bool tied, double k_contact, double c_contact) {
+    double K = w * k_ring + k_contact;
+    if (tied) K += 2.0 * w_tie * k_tie_;
+    return limit(K, w * c_ring + c_contact, w * m_node_);
+  };
   // A node without contact rows has the step of every such node of its weight and tie: the
-  // same operands, so the same bits. It is computed once per class, not per node (the square
-  // roots and divisions of this loop were 7.7 % of a welded central-difference run).
-  double same[2][2] = {{-1.0, -1.0}, {-1.0, -1.0}};  // [axis node][tied]
+  // same operands, so the same bits. The loop only notes which of these classes occur and
+  // computes the nodes with contact rows; each class's step is computed once after it (the
+  // square roots and divisions were 7.7 % of a welded central-difference run, and the
+  // per-node class bookkeeping most of what remained). Only the axis nodes (half weight)
+  // and the tied ones (0 and jb) differ from an interior node.
+  bool occurs[2][2] = {{false, false}, {false, false}};  // [axis node][tied]
   double dt = none;
-  for (int r = 0; r < n_rings_; ++r)
+  for (int r = 0; r < n_rings_; ++r) {
+    const double* k_row = contact_k_row_.data() + static_cast<std::size_t>(r * n_ind_);
+    const double* c_row = contact_c_row_.data() + static_cast<std::size_t>(r * n_ind_);
     for (int j = 0; j < n_ind_; ++j) {
-      const auto g = static_cast<std::size_t>(r * n_ind_ + j);
-      const double w = node_weight(j);
-      const bool tied = welded && ((j == jb && r + 1 < n_rings_) || (j == 0 && r > 0));
-      const double k_contact = contacts ? contact_k_row_[g] : 0.0, c_contact = contact_c_row_[g];
-      const bool free = k_contact == 0.0 && c_contact == 0.0;
-      double* cached = free ? &same[w == 1.0 ? 0 : 1][tied ? 1 : 0] : nullptr;
-      if (cached && *cached >= 0.0) {
-        dt = std::min(dt, *cached);
-        continue;
-      }
-      double K = w * k_ring + k_contact;
-      if (tied) K += 2.0 * w_tie * k_tie_;
-      const double step = limit(K, w * c_ring + c_contact, w * m_node_);
-      if (cached) *cached = step;
-      dt = std::min(dt, step);
+      const double k_contact = contacts ? k_row[j] : 0.0, c_contact = c_row[j];
+      const bool special = j == 0 || j == jb || j == n_ind_ - 1;
+      const bool tied = special && welded && ((j == jb && r + 1 < n_rings_) || (j == 0 && r > 0));
+      const double w = special ? node_weight(j) : 1.0;
+      if (k_contact == 0.0 && c_contact == 0.0)
+        occurs[w == 1.0 ? 0 : 1][tied ? 1 : 0] = true;
+      else
+        dt = std::min(dt, node_step(w, tied, k_contact, c_contact));
     }
+  }
+  for (int a = 0; a < 2; ++a)
+    for (int t = 0; t < 2; ++t)
+      if (occurs[a][t]) dt = std::min(dt, node_step(a == 0 ? 1.0 : 0.5, t == 1, 0.0, 0.0));
   for (int b = 0; b < n_bodies_; ++b) {
     if (b == 0 && in_.driven_impactor) continue;
     const auto g = static_cast<std::size_t>(n_rings_ * n_ind_ + b);

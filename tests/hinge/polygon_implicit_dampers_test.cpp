@@ -232,3 +232,63 @@ TEST(PolygonImplicitDampers, StableStepIsTheUndampedBound) {
   EXPECT_TRUE(damped.implicit_ring_dampers());
   EXPECT_GE(cd.stable_step(), 0.8 * bound * (1.0 - 1e-12));
 }
+
+// Five far-apart rings, each distorted and moving at random in its own way, solved together
+// (the half model's rings advance interleaved in one band factorisation, polygon_implicit_
+// dampers.cpp): every ring's v and d = C v equal the dense LDLᵀ solve of that ring alone, to
+// 1e-12, on two successive calls with different states and h (the band's pad rows are kept
+// between calls); full ring and half model. An odd ring count, so that no ring lane pairs up.
+TEST(PolygonImplicitDampers, InterleavedRingsEachEqualTheirDenseSolve) {
+  for (bool half : {true, false}) {
+    PolygonChainInput five = lone_ring(half);
+    five.rings = 5;
+    five.pitch_m = 2.0 * five.outer_diameter_m;
+    PolygonChain rings(five);
+    PolygonChain lone(lone_ring(half));
+    const auto rows = velocity_rows(lone);
+    const auto n = static_cast<Eigen::Index>(rows.size());
+    const std::size_t node_rows = rings.node_offset(1, 0);  // one ring's state rows
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double l0 = lone.bar_length();
+    for (const double h : {2e-7, 5e-8}) {
+      auto y = rings.initial_state();
+      y[rings.body_offset(0)] += 0.01;
+      for (int r = 0; r < 5; ++r)
+        for (int j = 0; j < rings.independent_nodes(); ++j) {
+          const auto o = rings.node_offset(r, j);
+          const bool axis = half && (j == 0 || j == rings.independent_nodes() - 1);
+          if (!axis) y[o] += 0.3 * l0 * u(gen);
+          y[o + 1] += 0.3 * l0 * u(gen);
+          y[o + 2] = axis ? 0.0 : 10.0 * u(gen);
+          y[o + 3] = 10.0 * u(gen);
+        }
+      std::vector<double> v = y, d(y.size(), 0.0);
+      rings.ring_damper_step(y.data(), h, v.data(), d.data());
+      for (int r = 0; r < 5; ++r) {
+        // Ring r moved onto the lone ring's centre: the same C (it depends on the bars only).
+        auto y1 = lifted_state(lone);
+        const double shift =
+            lone.initial_state()[lone.node_offset(0, 0) + 1] - rings.initial_state()[rings.node_offset(r, 0) + 1];
+        for (std::size_t k = 0; k < node_rows; ++k)
+          y1[k] = y[rings.node_offset(r, 0) + k] + (k % 6 == 1 ? shift : 0.0);
+        const Eigen::MatrixXd C = damping_matrix(lone, y1, rows);
+        Eigen::VectorXd vstar(n), mu(n);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const auto k = rows[static_cast<std::size_t>(i)];
+          vstar(i) = y1[k];
+          mu(i) = lone.mass_row(k);
+        }
+        Eigen::MatrixXd A = h * C;
+        A.diagonal() += mu;
+        const Eigen::VectorXd dense = A.ldlt().solve(mu.cwiseProduct(vstar));
+        const Eigen::VectorXd Cv = C * dense;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const auto k = rings.node_offset(r, 0) + rows[static_cast<std::size_t>(i)];
+          EXPECT_NEAR(v[k], dense(i), 1e-12 * dense.norm()) << "half " << half << " h " << h << " ring " << r;
+          EXPECT_NEAR(d[k], Cv(i), 1e-12 * Cv.norm()) << "half " << half << " h " << h << " ring " << r;
+        }
+      }
+    }
+  }
+}
