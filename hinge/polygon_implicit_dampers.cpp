@@ -133,28 +133,47 @@ void PolygonChain::assemble_ring_dampers(int ring, const double* y) {
 // mirror images and enter with weight ½, their gradient folded (the mirrored node's part,
 // x sign flipped, added to its independent twin). The axis nodes' x rows and columns are
 // cleared at the end (those velocities stay 0).
+//
+// An entry of C is the sum over the elements on both its nodes of (w c gₚ) g_q, gₚ the row's
+// gradient component, g_q the column's. The sums run in the element order
+//   H0, B0, B1, H1, B2, H2, …, B_{N/2−1}, H_{N/2−1}, H_{N/2}
+// (H hinges, B bars; the order of the element-by-element scatter this replaces, whose bits
+// they keep), and a node is touched by at most five of them: with the elements numbered in
+// that order, E_0 = H0, E_1 = B0, E_{2k} = B_k, E_{2k+1} = H_k (0 < k < N/2), E_{N} empty,
+// E_{N+1} = H_{N/2}, node j's are E_{2j−2}, E_{2j−1}, E_{2j}, E_{2j+1}, E_{2j+3} in that
+// order — those two before node j's B_{j−1}, H_{j−1} pair at the ring's ends included. So
+// each element's scaled gradients are formed once (half_band_elements) and each node's two
+// band rows summed in registers and written once (no clearing, no read-modify-write).
 namespace {
 
 constexpr int kBand = 5;  // lower bandwidth: a hinge couples nodes two apart, 2 dofs each
 
-// Adds w c G Gᵀ of an element on `count` consecutive independent nodes from `first`, G their
-// (x, y) gradients, into the band (row-major, 6 per row: C(i, i − b) at 6 i + b).
-inline void add_element(double* band, int first, int count, const double (*g)[2], double wc) {
-  const int dofs = 2 * count, base = 2 * first;
-  for (int p = 0; p < dofs; ++p) {
-    const double gp = wc * g[p / 2][p % 2];
-    double* row = band + 6 * (base + p);
-    for (int q = 0; q <= p; ++q) row[p - q] += gp * g[q / 2][q % 2];
-  }
+// One element's w c G and G (x, y on three local nodes), 12 doubles: kWg at 0, kG at 6. An
+// even-numbered element's local node 0 is node k of E_{2k}, an odd one's is node k − 1 of
+// E_{2k+1}; E_1 = B0 is on its local nodes 1, 2, and the unused local nodes stay 0.
+constexpr int kElementSize = 12, kWg = 0, kG = 6;
+
+// Two doubles on the lanes of one SSE2 vector (GCC's vector extension, as fe/element/
+// element_lanes.hpp): the element gradients' divisions, which bound the assembly (perf), go
+// in pairs — each lane divides as the scalar division does, so the bits are the same.
+typedef double Pair __attribute__((vector_size(16)));
+constexpr int kElementPad = 2;  // empty elements before E_0 (for nodes 0 and 1)
+
+inline void set_element(double* e, int local, int count, const double (*g)[2], double wc) {
+  for (int p = 0; p < count; ++p)
+    for (int c = 0; c < 2; ++c) {
+      e[kG + 2 * (local + p) + c] = g[p][c];
+      e[kWg + 2 * (local + p) + c] = wc * g[p][c];
+    }
 }
 
-}  // namespace
-
-void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
-  const int n = 2 * n_ind_, last = n_ind_ - 1;
-  const double* p0 = y + node_offset(ring, 0);
-  auto X = [&](int j) { return p0[6 * j]; };
-  auto Y = [&](int j) { return p0[6 * j + 1]; };
+// The elements E_0 … E_{N+1} of one ring (y at its node 0, n_ind independent nodes, the bar
+// and hinge damper coefficients) into `elements` (E_{−2} first).
+void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge, double* elements) {
+  const int last = n_ind - 1;
+  auto E = [&](int k) { return elements + kElementSize * (k + kElementPad); };
+  auto X = [&](int j) { return y[6 * j]; };
+  auto Y = [&](int j) { return y[6 * j + 1]; };
   // Bar vectors j → j + 1 of the independent nodes, and n/ℓ = (−u_y, u_x)/|u|² of each.
   double ax = 0, ay = 0;  // n/ℓ of the previous bar
   // Hinge 0 (weight ½): bars N−1 (from the mirror of node 1 to node 0) and 0.
@@ -162,54 +181,128 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
     const double ux = X(0) + X(1), uy = Y(0) - Y(1);  // p0 − (−x1, y1)
     const double wx = X(1) - X(0), wy = Y(1) - Y(0);
     const double lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
-    const double a0x = -uy / lu, a0y = ux / lu, bx = -wy / lw, by = wx / lw;
-    if (c_hinge_ > 0) {
+    const Pair a0 = Pair{-uy, ux} / lu, b0 = Pair{-wy, wx} / lw;
+    const double a0x = a0[0], a0y = a0[1], bx = b0[0], by = b0[1];
+    if (c_hinge > 0) {
       const double g[2][2] = {{a0x + bx, a0y + by}, {a0x - bx, -a0y - by}};
-      add_element(band, 0, 2, g, 0.5 * c_hinge_);
+      set_element(E(0), 0, 2, g, 0.5 * c_hinge);
     }
   }
+  // Each bar's e and n/ℓ first, in a loop of their own: its square roots and divisions then
+  // overlap from bar to bar (in the loop below they waited on the stores of the last element).
+  double* bars = elements + kElementSize * (2 * last + 2 + 2 * kElementPad);  // [n/ℓ, e] per bar
   for (int k = 0; k < last; ++k) {
     const double wx = X(k + 1) - X(k), wy = Y(k + 1) - Y(k);
     const double lw = wx * wx + wy * wy;
-    if (c_bar_ > 0) {
-      const double l = std::sqrt(lw), ex = wx / l, ey = wy / l;
+    const Pair n = Pair{-wy, wx} / lw;
+    const Pair e = Pair{wx, wy} / std::sqrt(lw);
+    bars[4 * k] = n[0];
+    bars[4 * k + 1] = n[1];
+    bars[4 * k + 2] = e[0];
+    bars[4 * k + 3] = e[1];
+  }
+  for (int k = 0; k < last; ++k) {
+    if (c_bar > 0) {
+      const double ex = bars[4 * k + 2], ey = bars[4 * k + 3];
       const double g[2][2] = {{-ex, -ey}, {ex, ey}};
-      add_element(band, k, 2, g, c_bar_);
+      if (k == 0)
+        set_element(E(1), 1, 2, g, c_bar);
+      else
+        set_element(E(2 * k), 0, 2, g, c_bar);
     }
-    const double bx = -wy / lw, by = wx / lw;
-    if (k > 0 && c_hinge_ > 0) {  // hinge k on nodes k − 1, k, k + 1
+    const double bx = bars[4 * k], by = bars[4 * k + 1];
+    if (k > 0 && c_hinge > 0) {  // hinge k on nodes k − 1, k, k + 1
       const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
-      add_element(band, k - 1, 3, g, c_hinge_);
+      set_element(E(2 * k + 1), 0, 3, g, c_hinge);
     }
     ax = bx;
     ay = by;
   }
   // Hinge N/2 (weight ½): bar N/2 − 1 and bar N/2 to the mirror of node N/2 − 1.
-  if (c_hinge_ > 0) {
+  if (c_hinge > 0) {
     const double wx = -X(last - 1) - X(last), wy = Y(last - 1) - Y(last);
-    const double lw = wx * wx + wy * wy, bx = -wy / lw, by = wx / lw;
+    const Pair b = Pair{-wy, wx} / (wx * wx + wy * wy);
+    const double bx = b[0], by = b[1];
     const double g[2][2] = {{-ax + bx, -ay - by}, {ax + bx, ay + by}};
-    add_element(band, last - 1, 2, g, 0.5 * c_hinge_);
-  }
-  for (const int i : {0, 2 * last}) {  // axis nodes' x: row and column cleared
-    for (int b = 0; b <= kBand; ++b) band[6 * i + b] = 0.0;
-    for (int r = i + 1; r <= std::min(n - 1, i + kBand); ++r) band[6 * r + (r - i)] = 0.0;
+    set_element(E(2 * last + 1), 0, 2, g, 0.5 * c_hinge);
   }
 }
 
-// One row i of the band Cholesky of μ + h C, for one ring: L(i, i − q) for q = B…1, then the
-// diagonal, the rows' entries at row[q R] (ring-interleaved, R rings; row i − q at row − 6 q R,
-// its 1/L(i−q, i−q) at inv − q R), and the forward substitution's z_i in b. B is the row's
-// bandwidth: 5 for a node's y row, 4 for its x row — its column i − 5 is the y of the node
-// three back, which no bar or hinge couples to it, and the factor keeps that zero. The
-// operations are those of the generic loop over q ≤ 5 in the same order; the terms left out
-// are products with that exact zero (the partial sums are never −0, so their bits are kept).
-// Returns whether the pivot was positive.
+// Elements of one ring (kElementSize each, E_{−2} … E_{N+3}), then 4 per bar.
+inline std::size_t element_scratch_size(int n_ind) {
+  return static_cast<std::size_t>(kElementSize * (2 * (n_ind - 1) + 2 + 2 * kElementPad) + 4 * (n_ind - 1));
+}
+
+}  // namespace
+
+void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
+  const int last = n_ind_ - 1;
+  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
+  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
+  half_band_elements(y + node_offset(ring, 0), n_ind_, c_bar_, c_hinge_, scratch);
+  const double* E = scratch + kElementSize * kElementPad;
+  for (int j = 0; j <= last; ++j) {
+    // Node j's elements in the summation order and its local node in each, with those of
+    // nodes j − 1 and j − 2 where the element holds them.
+    const double* a = E + kElementSize * (2 * j - 2);  // B_{j−1} (H0 for j = 1): j at 1, j − 1 at 0
+    const double* b = E + kElementSize * (2 * j - 1);  // H_{j−1} (B0 for j = 1): j at 2, j − 1 at 1, j − 2 at 0
+    const double* c = E + kElementSize * (2 * j);      // B_j (H0 for j = 0): j at 0
+    const double* d = E + kElementSize * (2 * j + 1);  // H_j (B0 for 0, H_{N/2} for the last): j at 1, j − 1 at 0
+    const double* e = E + kElementSize * (2 * j + 3);  // H_{j+1}: j at 0
+    double* rx = band + 12 * j;
+    double* ry = rx + 6;
+    for (int cr = 0; cr < 2; ++cr) {  // the row: x, y of node j
+      double* row = cr == 0 ? rx : ry;
+      // Diagonal block: (x, x) or (y, y).
+      double s = 0.0;
+      s += a[kWg + 2 + cr] * a[kG + 2 + cr];
+      s += b[kWg + 4 + cr] * b[kG + 4 + cr];
+      s += c[kWg + cr] * c[kG + cr];
+      s += d[kWg + 2 + cr] * d[kG + 2 + cr];
+      s += e[kWg + cr] * e[kG + cr];
+      row[0] = s;
+      // Node j − 1 (y, then x) and j − 2 (y, then x), at distances cr + 1 … cr + 4.
+      for (int cc = 1; cc >= 0; --cc) {
+        double t = 0.0;
+        t += a[kWg + 2 + cr] * a[kG + cc];
+        t += b[kWg + 4 + cr] * b[kG + 2 + cc];
+        t += d[kWg + 2 + cr] * d[kG + cc];
+        row[cr + 2 - cc] = t;
+        row[cr + 4 - cc] = 0.0 + b[kWg + 4 + cr] * b[kG + cc];
+      }
+    }
+    {  // (y, x) of node j
+      double s = 0.0;
+      s += a[kWg + 3] * a[kG + 2];
+      s += b[kWg + 5] * b[kG + 4];
+      s += c[kWg + 1] * c[kG + 0];
+      s += d[kWg + 3] * d[kG + 2];
+      s += e[kWg + 1] * e[kG + 0];
+      ry[1] = s;
+    }
+  }
+  // Axis nodes' x: row and column cleared.
+  for (const int i : {0, 2 * last}) {
+    for (int q = 0; q <= kBand; ++q) band[6 * i + q] = 0.0;
+    for (int r = i + 1; r <= std::min(2 * n_ind_ - 1, i + kBand); ++r) band[6 * r + (r - i)] = 0.0;
+  }
+}
+
+// One row i of the band Cholesky of μ + h C, for one ring, in two parts: row_residual forms
+// L(i, i − q) for q = B…1 and leaves the pivot's radicand in the diagonal slot and the forward
+// substitution's numerator in b; row_pivot takes the square root, 1/L(i, i) and z_i. The rows'
+// entries are at row[q R] (ring-interleaved, R rings; row i − q at row − 6 q R, its
+// 1/L(i−q, i−q) at inv − q R). B is the row's bandwidth: 5 for a node's y row, 4 for its x row
+// — its column i − 5 is the y of the node three back, which no bar or hinge couples to it, and
+// the factor keeps that zero. The operations are those of the generic loop over q ≤ 5 in the
+// same order; the terms left out are products with that exact zero (the partial sums are
+// never −0, so their bits are kept). The split lets the rings' square roots and divisions,
+// the long latencies of the chain, run side by side (half_band_step).
 namespace {
 
 template <int B>
-inline bool factor_row(const double* c, double h, double mass, double* row, double* inv, double* b,
-                       std::ptrdiff_t R) {
+inline void row_residual(const double* c, double h, double mass, double* row, const double* inv, double* b,
+                         std::ptrdiff_t R) {
   double l[B + 1];
   for (int q = 0; q <= B; ++q) l[q] = h * c[q];
   l[0] += mass;
@@ -221,15 +314,19 @@ inline bool factor_row(const double* c, double h, double mass, double* row, doub
   }
   double s = l[0];
   for (int m = 1; m <= B; ++m) s -= l[m] * l[m];
-  const bool positive = s > 0.0;
-  l[0] = std::sqrt(s);
-  const double inv_i = 1.0 / l[0];
-  *inv = inv_i;
-  for (int q = 0; q <= B; ++q) row[q * R] = l[q];
+  row[0] = s;
+  for (int q = 1; q <= B; ++q) row[q * R] = l[q];
   double z = *b;
   for (int m = 1; m <= B; ++m) z -= l[m] * b[-m * R];
-  *b = z * inv_i;
-  return positive;
+  *b = z;
+}
+
+inline bool row_pivot(double* row, double* inv, double* b) {
+  const double s = *row;
+  *row = std::sqrt(s);
+  *inv = 1.0 / *row;
+  *b *= *inv;
+  return s > 0.0;
 }
 
 // Row i of the backward substitution Lᵀ x = z: the column of L below the diagonal, L(i + m, i)
@@ -255,9 +352,10 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
   const int n = 2 * n_ind_, R = n_rings_;
   const auto rows = static_cast<std::size_t>(n + 2 * kBand), ring_size = 6 * rows;
   const auto RR = static_cast<std::size_t>(R);
-  if (kv_band_c_.size() != ring_size * RR) {
-    // Per ring, contiguous: kBand zero rows, the band C(i, i − q) at 6 i + q, kBand zero rows.
-    kv_band_c_.assign(ring_size * RR, 0.0);
+  if (kv_band_c_.size() != ring_size * RR + element_scratch_size(n_ind_)) {
+    // Per ring, contiguous: kBand zero rows, the band C(i, i − q) at 6 i + q, kBand zero rows;
+    // then the element scratch of assemble_half_band.
+    kv_band_c_.assign(ring_size * RR + element_scratch_size(n_ind_), 0.0);
     // The factors interleaved, L(i, i − q) of ring r at (6 i + q) R + r: leading pad rows I,
     // trailing ones 0, so that the fixed-width rows need no bounds.
     kv_band_l_.assign(ring_size * RR, 0.0);
@@ -267,9 +365,7 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
     kv_b_.assign(rows * RR, 0.0);
   }
   for (int r = 0; r < R; ++r) {
-    double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand;
-    std::fill(C, C + 6 * n, 0.0);
-    assemble_half_band(r, y, C);
+    assemble_half_band(r, y, kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand);
   }
   const std::ptrdiff_t S = R;
   double* L = kv_band_l_.data() + 6 * kBand * RR;
@@ -287,9 +383,15 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
       const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand + 12 * static_cast<std::size_t>(j);
       bx[r] = axis ? 0.0 : m * v[o];
       bx[S + r] = m * v[o + 1];
-      definite &= factor_row<4>(C, h, m, Lx + r, ix + r, bx + r, S);
-      definite &= factor_row<5>(C + 6, h, m, Lx + 6 * S + r, ix + S + r, bx + S + r, S);
+      row_residual<4>(C, h, m, Lx + r, ix + r, bx + r, S);
     }
+    for (int r = 0; r < R; ++r) definite &= row_pivot(Lx + r, ix + r, bx + r);
+    for (int r = 0; r < R; ++r) {
+      const double m = mu_[node_offset(r, j) + 2];
+      const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand + 12 * static_cast<std::size_t>(j);
+      row_residual<5>(C + 6, h, m, Lx + 6 * S + r, ix + S + r, bx + S + r, S);
+    }
+    for (int r = 0; r < R; ++r) definite &= row_pivot(Lx + 6 * S + r, ix + S + r, bx + S + r);
   }
   if (!definite)
     throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
@@ -302,20 +404,20 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
       back_row<5>(Lx + r, ix + r, bx + r, S);
     }
   }
-  // v, and d = C v on each ring's band.
+  // v, and d = C v from the system itself: (μ + h C) v = μ v* gives C v = μ (v* − v)/h, two
+  // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
+  // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
+  // only the damper work, so the motion keeps its bits.
   for (int r = 0; r < R; ++r) {
-    const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand;
     double* vr = v + node_offset(r, 0) + 2;
     double* dr = d + node_offset(r, 0) + 2;
     const double* x = b + r;
     for (int i = 0; i < n; ++i) {
-      const double* xi = x + static_cast<std::ptrdiff_t>(i) * S;
-      const double* ci = C + 6 * i;
-      double di = ci[0] * xi[0];
-      for (int m = 1; m <= kBand; ++m) di += ci[m] * xi[-m * S] + ci[7 * m] * xi[m * S];
       const int at = 6 * (i / 2) + i % 2;
-      vr[at] = xi[0];
-      dr[at] = di;
+      const bool axis_x = i == 0 || i == n - 2;
+      const double xi = x[static_cast<std::ptrdiff_t>(i) * S];
+      dr[at] = axis_x ? 0.0 : mu_[node_offset(r, i / 2) + 2] * (vr[at] - xi) / h;
+      vr[at] = xi;
     }
   }
 }
@@ -333,6 +435,10 @@ void PolygonChain::ring_damper_forces(const double* y, const double* v, double* 
 void PolygonChain::ring_damper_step(const double* y, double h, double* v, double* d) {
   if (!(h >= 0.0))
     throw std::invalid_argument("PolygonChain::ring_damper_step: h must be ≥ 0, got " + std::to_string(h));
+  if (h == 0.0) {  // μ v = μ v*
+    ring_damper_forces(y, v, d);
+    return;
+  }
   if (half_) {
     half_band_step(y, h, v, d);
     return;
