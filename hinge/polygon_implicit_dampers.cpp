@@ -153,11 +153,17 @@ constexpr int kBand = 5;  // lower bandwidth: a hinge couples nodes two apart, 2
 // E_{2k+1}; E_1 = B0 is on its local nodes 1, 2, and the unused local nodes stay 0.
 constexpr int kElementSize = 12, kWg = 0, kG = 6;
 
-// Two doubles on the lanes of one SSE2 vector (GCC's vector extension, as fe/element/
-// element_lanes.hpp): the element gradients' divisions, which bound the assembly (perf), go
-// in pairs — each lane divides as the scalar division does, so the bits are the same.
-typedef double Pair __attribute__((vector_size(16)));
 constexpr int kElementPad = 2;  // empty elements before E_0 (for nodes 0 and 1)
+
+// Two doubles on the lanes of one SSE2 vector (GCC's vector extension, as fe/element/
+// element_lanes.hpp): two rings' band rows in half_band_step, an element gradient's two
+// divisions here. Each lane computes as the scalar code does (IEEE, no contraction on the
+// default x86-64 target), so the bits are the same.
+typedef double Pair __attribute__((vector_size(16)));
+
+// The rings' lanes in the interleaved band arrays (half_band_step): an even count, two rings
+// to a Pair, with a spare lane (identity, b = 0) when the ring count is odd.
+inline int lane_count(int rings) { return rings + rings % 2; }
 
 inline void set_element(double* e, int local, int count, const double (*g)[2], double wc) {
   for (int p = 0; p < count; ++p)
@@ -188,8 +194,7 @@ void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge
       set_element(E(0), 0, 2, g, 0.5 * c_hinge);
     }
   }
-  // Each bar's e and n/ℓ first, in a loop of their own: its square roots and divisions then
-  // overlap from bar to bar (in the loop below they waited on the stores of the last element).
+  // Each bar's e and n/ℓ (its square root and divisions) first, then the elements from them.
   double* bars = elements + kElementSize * (2 * last + 2 + 2 * kElementPad);  // [n/ℓ, e] per bar
   for (int k = 0; k < last; ++k) {
     const double wx = X(k + 1) - X(k), wy = Y(k + 1) - Y(k);
@@ -237,6 +242,7 @@ inline std::size_t element_scratch_size(int n_ind) {
 
 void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
   const int last = n_ind_ - 1;
+  const std::ptrdiff_t S = lane_count(n_rings_);  // band: ring r's C(i, i − q) at (6 i + q) S
   // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
   double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
   half_band_elements(y + node_offset(ring, 0), n_ind_, c_bar_, c_hinge_, scratch);
@@ -249,8 +255,8 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
     const double* c = E + kElementSize * (2 * j);      // B_j (H0 for j = 0): j at 0
     const double* d = E + kElementSize * (2 * j + 1);  // H_j (B0 for 0, H_{N/2} for the last): j at 1, j − 1 at 0
     const double* e = E + kElementSize * (2 * j + 3);  // H_{j+1}: j at 0
-    double* rx = band + 12 * j;
-    double* ry = rx + 6;
+    double* rx = band + 12 * j * S;
+    double* ry = rx + 6 * S;
     for (int cr = 0; cr < 2; ++cr) {  // the row: x, y of node j
       double* row = cr == 0 ? rx : ry;
       // Diagonal block: (x, x) or (y, y).
@@ -267,8 +273,8 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
         t += a[kWg + 2 + cr] * a[kG + cc];
         t += b[kWg + 4 + cr] * b[kG + 2 + cc];
         t += d[kWg + 2 + cr] * d[kG + cc];
-        row[cr + 2 - cc] = t;
-        row[cr + 4 - cc] = 0.0 + b[kWg + 4 + cr] * b[kG + cc];
+        row[(cr + 2 - cc) * S] = t;
+        row[(cr + 4 - cc) * S] = 0.0 + b[kWg + 4 + cr] * b[kG + cc];  // from 0 as the sums: −0 → +0
       }
     }
     {  // (y, x) of node j
@@ -278,120 +284,128 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
       s += c[kWg + 1] * c[kG + 0];
       s += d[kWg + 3] * d[kG + 2];
       s += e[kWg + 1] * e[kG + 0];
-      ry[1] = s;
+      ry[S] = s;
     }
   }
   // Axis nodes' x: row and column cleared.
   for (const int i : {0, 2 * last}) {
-    for (int q = 0; q <= kBand; ++q) band[6 * i + q] = 0.0;
-    for (int r = i + 1; r <= std::min(2 * n_ind_ - 1, i + kBand); ++r) band[6 * r + (r - i)] = 0.0;
+    for (int q = 0; q <= kBand; ++q) band[(6 * i + q) * S] = 0.0;
+    for (int r = i + 1; r <= std::min(2 * n_ind_ - 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
   }
 }
 
-// One row i of the band Cholesky of μ + h C, for one ring, in two parts: row_residual forms
-// L(i, i − q) for q = B…1 and leaves the pivot's radicand in the diagonal slot and the forward
-// substitution's numerator in b; row_pivot takes the square root, 1/L(i, i) and z_i. The rows'
-// entries are at row[q R] (ring-interleaved, R rings; row i − q at row − 6 q R, its
-// 1/L(i−q, i−q) at inv − q R). B is the row's bandwidth: 5 for a node's y row, 4 for its x row
-// — its column i − 5 is the y of the node three back, which no bar or hinge couples to it, and
-// the factor keeps that zero. The operations are those of the generic loop over q ≤ 5 in the
-// same order; the terms left out are products with that exact zero (the partial sums are
-// never −0, so their bits are kept). The split lets the rings' square roots and divisions,
-// the long latencies of the chain, run side by side (half_band_step).
+// One row i of the band Cholesky of μ + h C, for two rings on the lanes of a Pair, in two
+// parts: row_residual forms L(i, i − q) for q = B…1 and leaves the pivot's radicand in the
+// diagonal slot and the forward substitution's numerator in b; row_pivot takes the square
+// root, 1/L(i, i) and z_i. The rows' entries are at row[q S] (ring-interleaved on S lanes; row
+// i − q at row − 6 q S, its 1/L(i−q, i−q) at inv − q S). B is the row's bandwidth: 5 for a
+// node's y row, 4 for its x row — its column i − 5 is the y of the node three back, which no
+// bar or hinge couples to it, and the factor keeps that zero. Each lane performs the
+// operations of the generic loop over q ≤ 5 in the same order; the terms left out are
+// products with that exact zero (the partial sums are never −0, so their bits are kept). The
+// split lets the rings' square roots and divisions, the long latencies of the chain, run side
+// by side (half_band_step).
 namespace {
 
+// Two doubles anywhere in memory, read or written as one vector.
+typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
+inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
+inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
+
 template <int B>
-inline void row_residual(const double* c, double h, double mass, double* row, const double* inv, double* b,
-                         std::ptrdiff_t R) {
-  double l[B + 1];
-  for (int q = 0; q <= B; ++q) l[q] = h * c[q];
+inline void row_residual(const double* c, double h, Pair mass, double* row, const double* inv, double* b,
+                         std::ptrdiff_t S) {
+  Pair l[B + 1];
+  for (int q = 0; q <= B; ++q) l[q] = h * load(c + q * S);
   l[0] += mass;
   for (int q = B; q >= 1; --q) {
-    const double* lj = row - 6 * q * R;
-    double s = l[q];
-    for (int m = q + 1; m <= B; ++m) s -= l[m] * lj[(m - q) * R];
-    l[q] = s * inv[-q * R];
+    const double* lj = row - 6 * q * S;
+    Pair s = l[q];
+    for (int m = q + 1; m <= B; ++m) s -= l[m] * load(lj + (m - q) * S);
+    l[q] = s * load(inv - q * S);
   }
-  double s = l[0];
+  Pair s = l[0];
   for (int m = 1; m <= B; ++m) s -= l[m] * l[m];
-  row[0] = s;
-  for (int q = 1; q <= B; ++q) row[q * R] = l[q];
-  double z = *b;
-  for (int m = 1; m <= B; ++m) z -= l[m] * b[-m * R];
-  *b = z;
+  store(row, s);
+  for (int q = 1; q <= B; ++q) store(row + q * S, l[q]);
+  Pair z = load(b);
+  for (int m = 1; m <= B; ++m) z -= l[m] * load(b - m * S);
+  store(b, z);
 }
 
 inline bool row_pivot(double* row, double* inv, double* b) {
-  const double s = *row;
-  *row = std::sqrt(s);
-  *inv = 1.0 / *row;
-  *b *= *inv;
-  return s > 0.0;
+  const Pair s = load(row);
+  const Pair l = {std::sqrt(s[0]), std::sqrt(s[1])};
+  const Pair inv_l = 1.0 / l;
+  store(row, l);
+  store(inv, inv_l);
+  store(b, load(b) * inv_l);
+  return s[0] > 0.0 && s[1] > 0.0;
 }
 
 // Row i of the backward substitution Lᵀ x = z: the column of L below the diagonal, L(i + m, i)
-// at row[(6 m + m) R]. B as above, of the rows below: a y row's column reaches the x row five
+// at row[(6 m + m) S]. B as above, of the rows below: a y row's column reaches the x row five
 // down only through that row's structural zero.
 template <int B>
-inline void back_row(const double* row, const double* inv, double* b, std::ptrdiff_t R) {
-  double s = *b;
-  for (int m = 1; m <= B; ++m) s -= row[7 * m * R] * b[m * R];
-  *b = s * *inv;
+inline void back_row(const double* row, const double* inv, double* b, std::ptrdiff_t S) {
+  Pair s = load(b);
+  for (int m = 1; m <= B; ++m) s -= load(row + 7 * m * S) * load(b + m * S);
+  store(b, s * load(inv));
 }
+
 
 }  // namespace
 
 // All rings at once: the factorisation and the two substitutions are chains of dependent
 // operations (each row waits for the previous ones), so the rings' bands are interleaved
-// (ring index innermost) and the rings advance in lockstep — independent work for the
-// processor's pipelines (≈ 4× faster than ring after ring on Test 30). A node's two rows are
-// one unrolled body per ring with its fixed bandwidths (factor_row), the forward substitution
-// fused into the factorisation; the pad rows (identity before the band, zero after it) stay
-// from the first call, so each call writes only the band.
+// (ring index innermost) and the rings advance in lockstep, two to a vector — independent
+// work for the processor's pipelines and SIMD lanes. A node's two rows are unrolled bodies
+// with their fixed bandwidths (row_residual), the forward substitution fused into the
+// factorisation; the pad rows (identity before the band, zero after it) stay from the first
+// call, so each call writes only the band.
 void PolygonChain::half_band_step(const double* y, double h, double* v, double* d) {
-  const int n = 2 * n_ind_, R = n_rings_;
-  const auto rows = static_cast<std::size_t>(n + 2 * kBand), ring_size = 6 * rows;
-  const auto RR = static_cast<std::size_t>(R);
-  if (kv_band_c_.size() != ring_size * RR + element_scratch_size(n_ind_)) {
-    // Per ring, contiguous: kBand zero rows, the band C(i, i − q) at 6 i + q, kBand zero rows;
-    // then the element scratch of assemble_half_band.
-    kv_band_c_.assign(ring_size * RR + element_scratch_size(n_ind_), 0.0);
-    // The factors interleaved, L(i, i − q) of ring r at (6 i + q) R + r: leading pad rows I,
-    // trailing ones 0, so that the fixed-width rows need no bounds.
-    kv_band_l_.assign(ring_size * RR, 0.0);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(kBand); ++i)
-      for (std::size_t r = 0; r < RR; ++r) kv_band_l_[6 * i * RR + r] = 1.0;
-    kv_inv_diag_.assign(rows * RR, 1.0);
-    kv_b_.assign(rows * RR, 0.0);
+  const int n = 2 * n_ind_, R = n_rings_, S = lane_count(R);
+  const auto rows = static_cast<std::size_t>(n + 2 * kBand), lanes = static_cast<std::size_t>(S);
+  const std::size_t band_size = 6 * static_cast<std::size_t>(n) * lanes;
+  if (kv_band_c_.size() != band_size + element_scratch_size(n_ind_)) {
+    // C(i, i − q) of ring r at (6 i + q) S + r (a spare lane 0), then the element scratch of
+    // assemble_half_band.
+    kv_band_c_.assign(band_size + element_scratch_size(n_ind_), 0.0);
+    // The factors, L(i, i − q) of ring r at (6 i + q) S + r: leading pad rows I, trailing
+    // ones 0, so that the fixed-width rows need no bounds; a spare lane is I throughout.
+    kv_band_l_.assign(6 * rows * lanes, 0.0);
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t r = 0; r < lanes; ++r)
+        if (i < static_cast<std::size_t>(kBand) || r >= static_cast<std::size_t>(R)) kv_band_l_[6 * i * lanes + r] = 1.0;
+    kv_inv_diag_.assign(rows * lanes, 1.0);
+    kv_b_.assign(rows * lanes, 0.0);
   }
-  for (int r = 0; r < R; ++r) {
-    assemble_half_band(r, y, kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand);
-  }
-  const std::ptrdiff_t S = R;
-  double* L = kv_band_l_.data() + 6 * kBand * RR;
-  double* b = kv_b_.data() + kBand * RR;
-  double* inv = kv_inv_diag_.data() + kBand * RR;
+  for (int r = 0; r < R; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
+  double* L = kv_band_l_.data() + 6 * kBand * lanes;
+  double* b = kv_b_.data() + kBand * lanes;
+  double* inv = kv_inv_diag_.data() + kBand * lanes;
+  const double* C = kv_band_c_.data();
   bool definite = true;
   for (int j = 0; j < n_ind_; ++j) {
     const bool axis = j == 0 || j == n_ind_ - 1;  // axis nodes' x stays 0
-    double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
+    const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
       const std::size_t o = node_offset(r, j) + 2;
-      const double m = mu_[o];
-      const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand + 12 * static_cast<std::size_t>(j);
-      bx[r] = axis ? 0.0 : m * v[o];
-      bx[S + r] = m * v[o + 1];
-      row_residual<4>(C, h, m, Lx + r, ix + r, bx + r, S);
+      bx[r] = axis ? 0.0 : mu_[o] * v[o];
+      bx[S + r] = mu_[o] * v[o + 1];
     }
-    for (int r = 0; r < R; ++r) definite &= row_pivot(Lx + r, ix + r, bx + r);
-    for (int r = 0; r < R; ++r) {
-      const double m = mu_[node_offset(r, j) + 2];
-      const double* C = kv_band_c_.data() + static_cast<std::size_t>(r) * ring_size + 6 * kBand + 12 * static_cast<std::size_t>(j);
-      row_residual<5>(C + 6, h, m, Lx + 6 * S + r, ix + S + r, bx + S + r, S);
+    for (int r = 0; r < S; r += 2) {
+      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
+      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
     }
-    for (int r = 0; r < R; ++r) definite &= row_pivot(Lx + 6 * S + r, ix + S + r, bx + S + r);
+    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r, bx + r);
+    for (int r = 0; r < S; r += 2) {
+      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
+      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
+    }
+    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r, bx + S + r);
   }
   if (!definite)
     throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
@@ -399,15 +413,16 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
     const double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     const double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    for (int r = 0; r < R; ++r) {
+    for (int r = 0; r < S; r += 2) {
       back_row<4>(Lx + 6 * S + r, ix + S + r, bx + S + r, S);
       back_row<5>(Lx + r, ix + r, bx + r, S);
     }
   }
-  // v, and d = C v from the system itself: (μ + h C) v = μ v* gives C v = μ (v* − v)/h, two
+  // v, and d = C v from the system itself: (μ + h C) v = μ v* gives C v = μ (v* − v)/h, three
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
+  const double inv_h = 1.0 / h;
   for (int r = 0; r < R; ++r) {
     double* vr = v + node_offset(r, 0) + 2;
     double* dr = d + node_offset(r, 0) + 2;
@@ -416,7 +431,7 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
       const int at = 6 * (i / 2) + i % 2;
       const bool axis_x = i == 0 || i == n - 2;
       const double xi = x[static_cast<std::ptrdiff_t>(i) * S];
-      dr[at] = axis_x ? 0.0 : mu_[node_offset(r, i / 2) + 2] * (vr[at] - xi) / h;
+      dr[at] = axis_x ? 0.0 : mu_[node_offset(r, i / 2) + 2] * (vr[at] - xi) * inv_h;
       vr[at] = xi;
     }
   }
