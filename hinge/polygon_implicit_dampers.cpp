@@ -160,6 +160,10 @@ constexpr int kElementPad = 2;  // empty elements before E_0 (for nodes 0 and 1)
 // divisions here. Each lane computes as the scalar code does (IEEE, no contraction on the
 // default x86-64 target), so the bits are the same.
 typedef double Pair __attribute__((vector_size(16)));
+// Two doubles anywhere in memory, read or written as one vector.
+typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
+inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
+inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 
 // The rings' lanes in the interleaved band arrays (half_band_step): an even count, two rings
 // to a Pair, with a spare lane (identity, b = 0) when the ring count is odd.
@@ -257,34 +261,35 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
     const double* e = E + kElementSize * (2 * j + 3);  // H_{j+1}: j at 0
     double* rx = band + 12 * j * S;
     double* ry = rx + 6 * S;
-    for (int cr = 0; cr < 2; ++cr) {  // the row: x, y of node j
-      double* row = cr == 0 ? rx : ry;
-      // Diagonal block: (x, x) or (y, y).
-      double s = 0.0;
-      s += a[kWg + 2 + cr] * a[kG + 2 + cr];
-      s += b[kWg + 4 + cr] * b[kG + 4 + cr];
-      s += c[kWg + cr] * c[kG + cr];
-      s += d[kWg + 2 + cr] * d[kG + 2 + cr];
-      s += e[kWg + cr] * e[kG + cr];
-      row[0] = s;
-      // Node j − 1 (y, then x) and j − 2 (y, then x), at distances cr + 1 … cr + 4.
-      for (int cc = 1; cc >= 0; --cc) {
-        double t = 0.0;
-        t += a[kWg + 2 + cr] * a[kG + cc];
-        t += b[kWg + 4 + cr] * b[kG + 2 + cc];
-        t += d[kWg + 2 + cr] * d[kG + cc];
-        row[(cr + 2 - cc) * S] = t;
-        row[(cr + 4 - cc) * S] = 0.0 + b[kWg + 4 + cr] * b[kG + cc];  // from 0 as the sums: −0 → +0
-      }
+    // The x and y rows on the two lanes of a Pair: the diagonal block's (x, x) and (y, y),
+    // then nodes j − 1 and j − 2, y column then x, at distances 1 … 4 (x row) and 2 … 5 (y).
+    Pair s = {0.0, 0.0};
+    s += load(a + kWg + 2) * load(a + kG + 2);
+    s += load(b + kWg + 4) * load(b + kG + 4);
+    s += load(c + kWg) * load(c + kG);
+    s += load(d + kWg + 2) * load(d + kG + 2);
+    s += load(e + kWg) * load(e + kG);
+    rx[0] = s[0];
+    ry[0] = s[1];
+    for (int cc = 1; cc >= 0; --cc) {
+      Pair t = {0.0, 0.0};
+      t += load(a + kWg + 2) * a[kG + cc];
+      t += load(b + kWg + 4) * b[kG + 2 + cc];
+      t += load(d + kWg + 2) * d[kG + cc];
+      rx[(2 - cc) * S] = t[0];
+      ry[(3 - cc) * S] = t[1];
+      const Pair u = 0.0 + load(b + kWg + 4) * b[kG + cc];  // from 0 as the sums: −0 → +0
+      rx[(4 - cc) * S] = u[0];
+      ry[(5 - cc) * S] = u[1];
     }
     {  // (y, x) of node j
-      double s = 0.0;
-      s += a[kWg + 3] * a[kG + 2];
-      s += b[kWg + 5] * b[kG + 4];
-      s += c[kWg + 1] * c[kG + 0];
-      s += d[kWg + 3] * d[kG + 2];
-      s += e[kWg + 1] * e[kG + 0];
-      ry[S] = s;
+      double yx = 0.0;
+      yx += a[kWg + 3] * a[kG + 2];
+      yx += b[kWg + 5] * b[kG + 4];
+      yx += c[kWg + 1] * c[kG + 0];
+      yx += d[kWg + 3] * d[kG + 2];
+      yx += e[kWg + 1] * e[kG + 0];
+      ry[S] = yx;
     }
   }
   // Axis nodes' x: row and column cleared.
@@ -307,10 +312,6 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
 // by side (half_band_step).
 namespace {
 
-// Two doubles anywhere in memory, read or written as one vector.
-typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
-inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
-inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 
 template <int B>
 inline void row_residual(const double* c, double h, Pair mass, double* row, const double* inv, double* b,
@@ -423,18 +424,16 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
   const double inv_h = 1.0 / h;
-  for (int r = 0; r < R; ++r) {
-    double* vr = v + node_offset(r, 0) + 2;
-    double* dr = d + node_offset(r, 0) + 2;
-    const double* x = b + r;
-    for (int i = 0; i < n; ++i) {
-      const int at = 6 * (i / 2) + i % 2;
-      const bool axis_x = i == 0 || i == n - 2;
-      const double xi = x[static_cast<std::ptrdiff_t>(i) * S];
-      dr[at] = axis_x ? 0.0 : mu_[node_offset(r, i / 2) + 2] * (vr[at] - xi) * inv_h;
-      vr[at] = xi;
+  for (int r = 0; r < R; ++r)
+    for (int j = 0; j < n_ind_; ++j) {
+      const std::size_t o = node_offset(r, j) + 2;
+      const double* x = b + 2 * static_cast<std::ptrdiff_t>(j) * S + r;
+      const double m = mu_[o], vx = x[0], vy = x[S];
+      d[o] = j == 0 || j == n_ind_ - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
+      d[o + 1] = m * (v[o + 1] - vy) * inv_h;
+      v[o] = vx;
+      v[o + 1] = vy;
     }
-  }
 }
 
 void PolygonChain::ring_damper_forces(const double* y, const double* v, double* d) {
