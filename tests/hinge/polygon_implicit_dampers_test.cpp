@@ -292,3 +292,28 @@ TEST(PolygonImplicitDampers, InterleavedRingsEachEqualTheirDenseSolve) {
     }
   }
 }
+
+// h = 0: the system is μ v = μ v*, so v stays v* to the bit and d = C v* (the half model's
+// band step forms d from (v* − v)/h, which needs h > 0; ring_damper_step takes the product).
+TEST(PolygonImplicitDampers, ZeroStepLeavesTheVelocity) {
+  for (bool half : {true, false}) {
+    PolygonChain chain(lone_ring(half));
+    auto y = lifted_state(chain);
+    std::mt19937 gen(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const auto rows = velocity_rows(chain);
+    for (int j = 0; j < chain.independent_nodes(); ++j) y[chain.node_offset(0, j) + 1] += 0.3 * chain.bar_length() * u(gen);
+    const Eigen::MatrixXd C = damping_matrix(chain, y, rows);
+    const auto n = static_cast<Eigen::Index>(rows.size());
+    Eigen::VectorXd vstar(n);
+    for (Eigen::Index i = 0; i < n; ++i) y[rows[static_cast<std::size_t>(i)]] = vstar(i) = 10.0 * u(gen);
+    const Eigen::VectorXd Cv = C * vstar;
+    std::vector<double> v = y, d(y.size(), 0.0);
+    chain.ring_damper_step(y.data(), 0.0, v.data(), d.data());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto r = rows[static_cast<std::size_t>(i)];
+      EXPECT_EQ(v[r], vstar(i)) << "half " << half << " row " << i;
+      EXPECT_NEAR(d[r], Cv(i), 1e-12 * Cv.norm()) << "half " << half << " row " << i;
+    }
+  }
+}
