@@ -418,8 +418,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   template <class Sink>
   void for_each_damper_entry(Sink&& sink) const;
   void assemble_ring_dampers(int ring, const double* y);
-  // The half model's fast path: the open band (bandwidth 5) of a ring assembled straight from
-  // y, band[6 i + q] = C(i, i − q); the rings' Cholesky factors interleaved in kv_band_l_.
+  // The half model's fast path: the open band (bandwidth 5) of every ring assembled straight
+  // from y, interleaved — C(i, i − q) of ring r at (6 i + q) S + r, S the ring count rounded up
+  // to even (two rings to an SSE2 vector), then assemble_half_band's element scratch —; the
+  // Cholesky factors interleaved alike in kv_band_l_.
   std::vector<double> kv_band_c_, kv_band_l_, kv_inv_diag_;
   void assemble_half_band(int ring, const double* y, double* band);
   void half_band_step(const double* y, double h, double* v, double* d);
