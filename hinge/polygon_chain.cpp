@@ -119,6 +119,13 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   bar_ex_.resize(n_full_);
   bar_ey_.resize(n_full_);
   bar_beta_.resize(n_full_);
+  bar_gx_.resize(n_full_);
+  bar_gy_.resize(n_full_);
+  plan_ring_pass();
+  hinge_flow_.resize(n_full_);
+  hinge_flow_known_.assign(n_full_, 0);
+  for (std::size_t i = 0; i < size_; ++i)
+    if (mu_[i] != 1.0) inertia_rows_.push_back(i);
   phi_.resize(size_);
   hinge_gx_.resize(n_full_);
   hinge_gy_.resize(n_full_);
@@ -315,7 +322,7 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 
 void PolygonChain::rhs(double t, const double* y, double* dydt) {
   evaluate(t, y, dydt, false);
-  for (std::size_t i = 0; i < size_; ++i) dydt[i] /= mu_[i];
+  for (const std::size_t i : inertia_rows_) dydt[i] /= mu_[i];
 }
 
 void PolygonChain::residual(double t, const double* y, const double* yp, double* r) {

@@ -321,6 +321,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void update_contact_boxes(const double* y);
   void build_candidates(const double* y);
   int contact_pass(int slave_ring, int master_ring, bool self) const;
+  bool near_own_segment(int node, int segment) const;
   void node_segment_contact(int slave_ring, int master_ring, bool self, const double* y,
                             double* phi, bool record, Tally& tally);
   double prescribed_speed(double t) const;
@@ -375,6 +376,17 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // Scratch (no allocation in the residual).
   std::vector<double> px_, py_, vx_, vy_, theta_p_, fx_, fy_, moment_;
   std::vector<double> bar_l_, bar_nx_, bar_ny_, bar_ex_, bar_ey_, bar_beta_;
+  // The ring pass (polygon_ring_forces.cpp): the full-ring nodes and bars it reads (all, or
+  // in the half model those that reach an independent node), which bars carry a hinge at
+  // their start, and each bar's n/ℓ (∂β/∂p of its far end) shared by its two hinges.
+  std::vector<int> ring_nodes_, ring_bars_;
+  std::vector<char> ring_hinge_;
+  std::vector<double> bar_gx_, bar_gy_;
+  void plan_ring_pass();
+  void gather_ring(int ring, const double* y, bool velocities);
+  // Rows of y′ = φ/μ whose μ is not 1 (the node velocities and free bodies): rhs divides
+  // only these (x/1 is x).
+  std::vector<std::size_t> inertia_rows_;
   double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
   double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
   double last_max_penetration_ = 0.0, last_max_strain_ = 0.0;
@@ -404,6 +416,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
+  // [j] of the ring in the pass: the flow law at the hinge's trial state, and whether the
+  // update left the hinge there (no flow), so that the pass's flow rows can reuse it.
+  std::vector<Flow> hinge_flow_;
+  std::vector<char> hinge_flow_known_;
   double landing_depth_ = 0.0, landing_speed_ = 0.0;
   double landing_step_ = std::numeric_limits<double>::infinity();
   void note_landing(double gap, double rate) {

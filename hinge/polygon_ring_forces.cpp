@@ -19,21 +19,47 @@ PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
   return {My, over, over > 0.0 ? C_vp_ * (q_ == 1.0 ? over : std::pow(over, q_)) : 0.0};
 }
 
+// The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
+// and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
+// mirrored nodes and are skipped, and nodes N/2 + 3…N − 3 are never read (their forces were
+// computed and dropped; the sums on the independent nodes keep their order, so φ and the
+// Jacobian are unchanged to the bit). The lists are fixed by the topology.
+void PolygonChain::plan_ring_pass() {
+  const int h = n_full_ / 2;
+  ring_nodes_.clear();
+  ring_bars_.clear();
+  ring_hinge_.assign(static_cast<std::size_t>(n_full_), 0);
+  for (int k = 0; k < n_full_; ++k) {
+    if (!half_ || k <= h + 2 || k >= n_full_ - 2) ring_nodes_.push_back(k);
+    if (!half_ || k <= h + 1 || k >= n_full_ - 2) ring_bars_.push_back(k);
+    if (!half_ || k <= h + 1 || k == n_full_ - 1) ring_hinge_[static_cast<std::size_t>(k)] = 1;
+  }
+}
+
+// Positions and θp (velocities only for the Kelvin–Voigt dampers, the one reader) of the
+// nodes the ring's bars reach; the half model mirrors nodes N/2 + 1…N − 1.
+void PolygonChain::gather_ring(int ring, const double* y, bool velocities) {
+  for (const int k : ring_nodes_) {
+    const bool mirrored = half_ && k >= n_ind_;
+    const auto o = node_offset(ring, mirrored ? n_full_ - k : k);
+    px_[k] = mirrored ? -y[o] : y[o];
+    py_[k] = y[o + 1];
+    theta_p_[k] = y[o + 4];
+    fx_[k] = fy_[k] = 0.0;
+    if (velocities) {
+      vx_[k] = mirrored ? -y[o + 2] : y[o + 2];
+      vy_[k] = y[o + 3];
+    }
+  }
+}
+
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
   const double turn0 = 2.0 * std::numbers::pi / n_full_;
-  // The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
-  // and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
-  // mirrored nodes and are skipped (their forces were computed and dropped; the sums on the
-  // independent nodes keep their order, so φ and the Jacobian are unchanged to the bit).
-  const int h = n_full_ / 2;
-  const auto bar_needed = [&](int k) { return !half_ || k <= h + 1 || k >= n_full_ - 2; };
-  const auto hinge_needed = [&](int k) { return !half_ || k <= h + 1 || k == n_full_ - 1; };
+  const bool velocities = c_bar_ > 0 || c_hinge_ > 0;
   for (int r = 0; r < n_rings_; ++r) {
-    expand_ring(r, y);
-    for (int k = 0; k < n_full_; ++k) {
-      fx_[k] = fy_[k] = 0.0;
-      if (!bar_needed(k)) continue;
-      const int k1 = (k + 1) % n_full_;
+    gather_ring(r, y, velocities);
+    for (const int k : ring_bars_) {
+      const int k1 = k + 1 == n_full_ ? 0 : k + 1;
       const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
       const double l = std::sqrt(bx * bx + by * by);
       bar_l_[k] = l;
@@ -41,17 +67,19 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       bar_ey_[k] = by / l;
       bar_nx_[k] = -bar_ey_[k];
       bar_ny_[k] = bar_ex_[k];
+      // ∂β/∂p of the bar's far end, n/ℓ: once per bar, read by the two hinges it joins.
+      bar_gx_[k] = bar_nx_[k] / l;
+      bar_gy_[k] = bar_ny_[k] / l;
       bar_beta_[k] = std::atan2(by, bx);
     }
-    for (int k = 0; k < n_full_; ++k) {
-      if (!bar_needed(k)) continue;
-      const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
-      if (hinge_needed(k)) {
+    for (const int k : ring_bars_) {
+      const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
+      if (ring_hinge_[static_cast<std::size_t>(k)]) {
         // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
         // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
         const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
-        const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
-        const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
+        const double ax = bar_gx_[km], ay = bar_gy_[km];
+        const double bx = bar_gx_[k], by = bar_gy_[k];
         moment_[k] = k_theta_ * (theta - theta_p_[k]);
         if (flow_y_ && k < n_ind_) update_hinge_flow(r, k, theta);  // central difference only
         double M = moment_[k];
@@ -202,7 +230,11 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
       // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
       const double M = moment_[j];
-      const Flow fl = flow(M, y[o + 5]);
+      // An elastic step of the central difference's flow update leaves M and ā as they were:
+      // its flow law is this one (polygon_flow_update.cpp).
+      const Flow fl = flow_y_ && hinge_flow_known_[static_cast<std::size_t>(j)]
+                          ? hinge_flow_[static_cast<std::size_t>(j)]
+                          : flow(M, y[o + 5]);
       const double My = fl.yield_moment, over = fl.over, rate = fl.rate;
       if (over > 0.0) {
         phi[o + 4] = M > 0 ? rate : -rate;

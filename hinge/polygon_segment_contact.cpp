@@ -22,6 +22,16 @@ int PolygonChain::contact_pass(int rs, int rm, bool self) const {
   return n_rings_ + 2 * std::min(rs, rm) + (rs > rm ? 1 : 0);
 }
 
+// A ring's own bars within two nodes of a node (either end) meet it at its hinges, not
+// across the ring: they are no contact partners of it (the full ring counts around).
+bool PolygonChain::near_own_segment(int j, int a) const {
+  const int b = a + 1 == n_ind_ ? 0 : a + 1;
+  const int da = std::abs(j - a), db = std::abs(j - b);
+  const int dista = half_ ? da : std::min(da, n_ind_ - da);
+  const int distb = half_ ? db : std::min(db, n_ind_ - db);
+  return dista <= 2 || distb <= 2;
+}
+
 void PolygonChain::update_contact_boxes(const double* y) {
   const int segs = contact_segments();
   for (int r = 0; r < n_rings_; ++r)
@@ -56,6 +66,7 @@ void PolygonChain::build_candidates(const double* y) {
       const auto os = node_offset(rs, j);
       const double sx = y[os], sy = y[os + 1];
       for (int a = 0; a < segs; ++a) {
+        if (self && near_own_segment(j, a)) continue;  // never a candidate: left out once here
         const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
         if (sx >= sb[0] - grow && sx <= sb[1] + grow && sy >= sb[2] - grow && sy <= sb[3] + grow)
           candidate_segment_.push_back(a);
@@ -92,13 +103,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
       const int a = *it;
       const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
       if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
-      const int b = (a + 1) % n_ind_;
-      if (self) {
-        const int da = std::abs(j - a), db = std::abs(j - b);
-        const int dista = half_ ? da : std::min(da, n_ind_ - da);
-        const int distb = half_ ? db : std::min(db, n_ind_ - db);
-        if (dista <= 2 || distb <= 2) continue;
-      }
+      const int b = a + 1 == n_ind_ ? 0 : a + 1;
       const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
       const double ax = y[oa], ay = y[oa + 1], bx = y[ob], by = y[ob + 1];
       const double ex = bx - ax, ey = by - ay;
@@ -114,7 +119,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
       }
     }
     if (best_a < 0) continue;
-    const int a = best_a, b = (a + 1) % n_ind_;
+    const int a = best_a, b = a + 1 == n_ind_ ? 0 : a + 1;
     if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
     const double pen = t_ - best;
     if (landing_depth_ > 0.0 && pen <= 0.0 && best < 2.0 * t_) {  // closing speed −(v − v_q)·n
