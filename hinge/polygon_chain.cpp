@@ -141,6 +141,7 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   flow_moment_.assign(static_cast<std::size_t>(n_rings_ * n_ind_), 0.0);
   candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
   candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
+  candidate_node_start_.assign(static_cast<std::size_t>(2 * 3 * n_rings_), 0);
   candidate_margin_ = 0.5 * t_;
 }
 

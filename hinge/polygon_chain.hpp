@@ -399,6 +399,12 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<int> candidate_start_, candidate_segment_;  // [pass·(n_ind + 1) + j] → range
   std::vector<double> candidate_reference_;               // node x, y when the lists were built
   bool candidates_built_ = false;
+  // Of the last build: per pass p [start, end) at 2p, 2p + 1 into candidate_nodes_ (the slave nodes with a
+  // non-empty list, ascending), and the segments (ring·n_ind + a) listed anywhere, the only
+  // boxes an evaluation reads until the next build.
+  std::vector<int> candidate_node_start_, candidate_nodes_, candidate_boxes_;
+  std::vector<char> candidate_box_mark_;
+  void segment_box(int ring, int segment, const double* y);
   double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
   JacobianScatter* scatter_ = nullptr;   // set while analytic_jacobian_scatter runs (jac_ too)
