@@ -122,8 +122,6 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   bar_gx_.resize(n_full_);
   bar_gy_.resize(n_full_);
   plan_ring_pass();
-  hinge_flow_.resize(n_full_);
-  hinge_flow_known_.assign(n_full_, 0);
   for (std::size_t i = 0; i < size_; ++i)
     if (mu_[i] != 1.0) inertia_rows_.push_back(i);
   phi_.resize(size_);

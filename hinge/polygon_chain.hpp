@@ -380,10 +380,13 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // in the half model those that reach an independent node), which bars carry a hinge at
   // their start, and each bar's n/ℓ (∂β/∂p of its far end) shared by its two hinges.
   std::vector<int> ring_nodes_, ring_bars_;
+  std::vector<std::array<int, 2>> bar_ranges_;  // ring_bars_ as [first, last) ranges
   std::vector<char> ring_hinge_;
   std::vector<double> bar_gx_, bar_gy_;
+  double turn_cos_ = 1.0, turn_sin_ = 0.0;  // of the rest turning 2π/N
   void plan_ring_pass();
   void gather_ring(int ring, const double* y, bool velocities);
+  void ring_bars(int first, int last);
   // Rows of y′ = φ/μ whose μ is not 1 (the node velocities and free bodies): rhs divides
   // only these (x/1 is x).
   std::vector<std::size_t> inertia_rows_;
@@ -422,10 +425,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
-  // [j] of the ring in the pass: the flow law at the hinge's trial state, and whether the
-  // update left the hinge there (no flow), so that the pass's flow rows can reuse it.
-  std::vector<Flow> hinge_flow_;
-  std::vector<char> hinge_flow_known_;
+  // [j] of the ring in the pass while the flow update runs: |M| ≤ M_y, no flow.
+  std::vector<char> hinge_elastic_;
   double landing_depth_ = 0.0, landing_speed_ = 0.0;
   double landing_step_ = std::numeric_limits<double>::infinity();
   void note_landing(double gap, double rate) {

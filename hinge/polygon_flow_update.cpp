@@ -71,11 +71,7 @@ void PolygonChain::update_hinge_flow(int r, int k, double theta) {
   const auto o = node_offset(r, k);
   const auto h = static_cast<std::size_t>(r * n_ind_ + k);
   const double trial = moment_[k];
-  const Flow elastic = flow(trial, flow_y_[o + 5]);  // return_map's own first test
-  const double d =
-      flow_dt_ > 0.0 && elastic.rate > 0.0 ? return_map(trial, flow_y_[o + 5], flow_dt_, flow_relaxation_) : 0.0;
-  hinge_flow_known_[static_cast<std::size_t>(k)] = !(d > 0.0);
-  hinge_flow_[static_cast<std::size_t>(k)] = elastic;
+  const double d = flow_dt_ > 0.0 ? return_map(trial, flow_y_[o + 5], flow_dt_, flow_relaxation_) : 0.0;
   if (d > 0.0) {
     const double dtheta_p = trial > 0 ? d : -d;
     flow_y_[o + 4] += dtheta_p;

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_hinge_angle.hpp"
 
 namespace ringcrush::hinge {
 
@@ -21,19 +22,31 @@ PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
 
 // The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
 // and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
-// mirrored nodes and are skipped, and nodes N/2 + 3…N − 3 are never read (their forces were
-// computed and dropped; the sums on the independent nodes keep their order, so φ and the
-// Jacobian are unchanged to the bit). The lists are fixed by the topology.
+// mirrored nodes and are skipped, and nodes N/2 + 3…N − 3 are never read (their forces would
+// be dropped; the sums on the independent nodes keep their order). The lists are fixed by
+// the topology; the bars also as at most two index ranges, so that their loop vectorises.
 void PolygonChain::plan_ring_pass() {
   const int h = n_full_ / 2;
   ring_nodes_.clear();
   ring_bars_.clear();
+  bar_ranges_.clear();
   ring_hinge_.assign(static_cast<std::size_t>(n_full_), 0);
   for (int k = 0; k < n_full_; ++k) {
     if (!half_ || k <= h + 2 || k >= n_full_ - 2) ring_nodes_.push_back(k);
-    if (!half_ || k <= h + 1 || k >= n_full_ - 2) ring_bars_.push_back(k);
+    if (!half_ || k <= h + 1 || k >= n_full_ - 2) {
+      ring_bars_.push_back(k);
+      if (bar_ranges_.empty() || bar_ranges_.back()[1] != k) bar_ranges_.push_back({k, k + 1});
+      else bar_ranges_.back()[1] = k + 1;
+    }
     if (!half_ || k <= h + 1 || k == n_full_ - 1) ring_hinge_[static_cast<std::size_t>(k)] = 1;
   }
+  // Node N is node 0 again (gather_ring), so bar k always ends at node k + 1.
+  px_.resize(static_cast<std::size_t>(n_full_) + 1);
+  py_.resize(static_cast<std::size_t>(n_full_) + 1);
+  const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  turn_cos_ = std::cos(turn0);
+  turn_sin_ = std::sin(turn0);
+  hinge_elastic_.assign(static_cast<std::size_t>(n_full_), 0);
 }
 
 // Positions and θp (velocities only for the Kelvin–Voigt dampers, the one reader) of the
@@ -51,6 +64,29 @@ void PolygonChain::gather_ring(int ring, const double* y, bool velocities) {
       vy_[k] = y[o + 3];
     }
   }
+  px_[n_full_] = px_[0];
+  py_[n_full_] = py_[0];
+}
+
+// Length, direction e and n/ℓ (∂β/∂p of the far end, n = e turned by +90°, read by the two
+// hinges the bar joins) of bars k ∈ [first, last), ending at node k + 1. One division.
+void PolygonChain::ring_bars(int first, int last) {
+  const double* __restrict px = px_.data();
+  const double* __restrict py = py_.data();
+  double* __restrict bl = bar_l_.data();
+  double* __restrict ex = bar_ex_.data();
+  double* __restrict ey = bar_ey_.data();
+  double* __restrict gx = bar_gx_.data();
+  double* __restrict gy = bar_gy_.data();
+  for (int k = first; k < last; ++k) {
+    const double bx = px[k + 1] - px[k], by = py[k + 1] - py[k];
+    const double l = std::sqrt(bx * bx + by * by), inv = 1.0 / l;
+    bl[k] = l;
+    ex[k] = bx * inv;
+    ey[k] = by * inv;
+    gx[k] = -ey[k] * inv;
+    gy[k] = ex[k] * inv;
+  }
 }
 
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
@@ -58,30 +94,28 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
   const bool velocities = c_bar_ > 0 || c_hinge_ > 0;
   for (int r = 0; r < n_rings_; ++r) {
     gather_ring(r, y, velocities);
-    for (const int k : ring_bars_) {
-      const int k1 = k + 1 == n_full_ ? 0 : k + 1;
-      const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
-      const double l = std::sqrt(bx * bx + by * by);
-      bar_l_[k] = l;
-      bar_ex_[k] = bx / l;
-      bar_ey_[k] = by / l;
-      bar_nx_[k] = -bar_ey_[k];
-      bar_ny_[k] = bar_ex_[k];
-      // ∂β/∂p of the bar's far end, n/ℓ: once per bar, read by the two hinges it joins.
-      bar_gx_[k] = bar_nx_[k] / l;
-      bar_gy_[k] = bar_ny_[k] / l;
-      bar_beta_[k] = std::atan2(by, bx);
-    }
+    for (const auto& range : bar_ranges_) ring_bars(range[0], range[1]);
     for (const int k : ring_bars_) {
       const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
       if (ring_hinge_[static_cast<std::size_t>(k)]) {
-        // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
-        // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
-        const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
+        // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N
+        // from bar k to bar k − 1 turned back by 2π/N (polygon_hinge_angle.hpp), moment
+        // M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
+        const double tx = bar_ex_[km] * turn_cos_ + bar_ey_[km] * turn_sin_;
+        const double ty = bar_ey_[km] * turn_cos_ - bar_ex_[km] * turn_sin_;
+        const double theta = hinge_rotation(bar_ex_[k] * ty - bar_ey_[k] * tx, bar_ex_[k] * tx + bar_ey_[k] * ty, turn0);
         const double ax = bar_gx_[km], ay = bar_gy_[km];
         const double bx = bar_gx_[k], by = bar_gy_[k];
         moment_[k] = k_theta_ * (theta - theta_p_[k]);
-        if (flow_y_ && k < n_ind_) update_hinge_flow(r, k, theta);  // central difference only
+        if (flow_y_ && k < n_ind_) {  // central difference only (polygon_flow_update.cpp)
+          // |M| ≤ M_y (flow's yield moment): no flow, so no update, and the flow rows below
+          // stay zero; the moment is noted for the next step's work.
+          const double yield = std::min(M0_ + H_ * flow_y_[node_offset(r, k) + 5], cap_);
+          const bool elastic = !(std::abs(moment_[k]) > yield);
+          hinge_elastic_[static_cast<std::size_t>(k)] = elastic;
+          if (elastic) flow_moment_[static_cast<std::size_t>(r * n_ind_ + k)] = moment_[k];
+          else update_hinge_flow(r, k, theta);
+        }
         double M = moment_[k];
         double hinge_rate = 0.0;
         if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
@@ -230,11 +264,11 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
       // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
       const double M = moment_[j];
-      // An elastic step of the central difference's flow update leaves M and ā as they were:
-      // its flow law is this one (polygon_flow_update.cpp).
-      const Flow fl = flow_y_ && hinge_flow_known_[static_cast<std::size_t>(j)]
-                          ? hinge_flow_[static_cast<std::size_t>(j)]
-                          : flow(M, y[o + 5]);
+      if (flow_y_ && hinge_elastic_[static_cast<std::size_t>(j)]) {  // no flow (above)
+        if (record) tally.elastic += w * 0.5 * M * M / k_theta_;
+        continue;
+      }
+      const Flow fl = flow(M, y[o + 5]);
       const double My = fl.yield_moment, over = fl.over, rate = fl.rate;
       if (over > 0.0) {
         phi[o + 4] = M > 0 ? rate : -rate;
