@@ -140,7 +140,7 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
   candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
   candidate_node_start_.assign(static_cast<std::size_t>(2 * 3 * n_rings_), 0);
-  candidate_margin_ = 0.5 * t_;
+  candidate_margin_ = t_;
 }
 
 std::vector<double> PolygonChain::component_scales() const {
@@ -259,7 +259,8 @@ void PolygonChain::add_contact_rows(std::size_t entity, double w, double penetra
 }
 
 void PolygonChain::evaluate(double t, const double* y, double* phi, bool record) {
-  std::fill(phi, phi + size_, 0.0);
+  // ring_forces comes first and sets every node row; the bodies' rows are sums.
+  std::fill(phi + body_base_, phi + size_, 0.0);
   std::fill(contact_k_row_.begin(), contact_k_row_.end(), 0.0);
   std::fill(contact_c_row_.begin(), contact_c_row_.end(), 0.0);
   landing_step_ = std::numeric_limits<double>::infinity();

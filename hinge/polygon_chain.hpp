@@ -379,14 +379,16 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // The ring pass (polygon_ring_forces.cpp): the full-ring nodes and bars it reads (all, or
   // in the half model those that reach an independent node), which bars carry a hinge at
   // their start, and each bar's n/ℓ (∂β/∂p of its far end) shared by its two hinges.
-  std::vector<int> ring_nodes_, ring_bars_;
+  std::vector<int> ring_nodes_, ring_bars_, ring_hinges_;
   std::vector<std::array<int, 2>> bar_ranges_;  // ring_bars_ as [first, last) ranges
   std::vector<char> ring_hinge_;
   std::vector<double> bar_gx_, bar_gy_;
+  std::vector<double> hinge_theta_, hinge_m_, bar_n_;  // θ, moment with damper, bar force
+  void ring_node_forces();
   double turn_cos_ = 1.0, turn_sin_ = 0.0;  // of the rest turning 2π/N
   void plan_ring_pass();
   void gather_ring(int ring, const double* y, bool velocities);
-  void ring_bars(int first, int last);
+  void ring_bars(int first, int last, bool reference);
   // Rows of y′ = φ/μ whose μ is not 1 (the node velocities and free bodies): rhs divides
   // only these (x/1 is x).
   std::vector<std::size_t> inertia_rows_;

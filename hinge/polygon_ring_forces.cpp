@@ -29,6 +29,7 @@ void PolygonChain::plan_ring_pass() {
   const int h = n_full_ / 2;
   ring_nodes_.clear();
   ring_bars_.clear();
+  ring_hinges_.clear();
   bar_ranges_.clear();
   ring_hinge_.assign(static_cast<std::size_t>(n_full_), 0);
   for (int k = 0; k < n_full_; ++k) {
@@ -38,8 +39,14 @@ void PolygonChain::plan_ring_pass() {
       if (bar_ranges_.empty() || bar_ranges_.back()[1] != k) bar_ranges_.push_back({k, k + 1});
       else bar_ranges_.back()[1] = k + 1;
     }
-    if (!half_ || k <= h + 1 || k == n_full_ - 1) ring_hinge_[static_cast<std::size_t>(k)] = 1;
+    if (!half_ || k <= h + 1 || k == n_full_ - 1) {
+      ring_hinge_[static_cast<std::size_t>(k)] = 1;
+      ring_hinges_.push_back(k);
+    }
   }
+  hinge_theta_.assign(static_cast<std::size_t>(n_full_), 0.0);
+  hinge_m_.assign(static_cast<std::size_t>(n_full_), 0.0);
+  bar_n_.assign(static_cast<std::size_t>(n_full_), 0.0);
   // Node N is node 0 again (gather_ring), so bar k always ends at node k + 1.
   px_.resize(static_cast<std::size_t>(n_full_) + 1);
   py_.resize(static_cast<std::size_t>(n_full_) + 1);
@@ -58,7 +65,6 @@ void PolygonChain::gather_ring(int ring, const double* y, bool velocities) {
     px_[k] = mirrored ? -y[o] : y[o];
     py_[k] = y[o + 1];
     theta_p_[k] = y[o + 4];
-    fx_[k] = fy_[k] = 0.0;
     if (velocities) {
       vx_[k] = mirrored ? -y[o + 2] : y[o + 2];
       vy_[k] = y[o + 3];
@@ -69,8 +75,10 @@ void PolygonChain::gather_ring(int ring, const double* y, bool velocities) {
 }
 
 // Length, direction e and n/ℓ (∂β/∂p of the far end, n = e turned by +90°, read by the two
-// hinges the bar joins) of bars k ∈ [first, last), ending at node k + 1. One division.
-void PolygonChain::ring_bars(int first, int last) {
+// hinges the bar joins) of bars k ∈ [first, last), ending at node k + 1. The reference forms
+// (`reference`) divide by ℓ and take each bar's angle β by atan2; the central difference's
+// multiply by 1/ℓ and need no β (ring_forces).
+void PolygonChain::ring_bars(int first, int last, bool reference) {
   const double* __restrict px = px_.data();
   const double* __restrict py = py_.data();
   double* __restrict bl = bar_l_.data();
@@ -78,6 +86,19 @@ void PolygonChain::ring_bars(int first, int last) {
   double* __restrict ey = bar_ey_.data();
   double* __restrict gx = bar_gx_.data();
   double* __restrict gy = bar_gy_.data();
+  if (reference) {
+    for (int k = first; k < last; ++k) {
+      const double bx = px[k + 1] - px[k], by = py[k + 1] - py[k];
+      const double l = std::sqrt(bx * bx + by * by);
+      bl[k] = l;
+      ex[k] = bx / l;
+      ey[k] = by / l;
+      gx[k] = -ey[k] / l;
+      gy[k] = ex[k] / l;
+      bar_beta_[k] = std::atan2(by, bx);
+    }
+    return;
+  }
   for (int k = first; k < last; ++k) {
     const double bx = px[k + 1] - px[k], by = py[k + 1] - py[k];
     const double l = std::sqrt(bx * bx + by * by), inv = 1.0 / l;
@@ -89,21 +110,59 @@ void PolygonChain::ring_bars(int first, int last) {
   }
 }
 
+// The node forces of the hinge moments M and bar forces N, node by node: hinge k puts
+// M a, −M (a + b), M b on nodes k − 1, k, k + 1 (a, b the n/ℓ of bars k − 1, k) and bar k
+// puts N e, −N e on nodes k, k + 1, so node j carries
+//   (M_{j−1} − M_j) g_{j−1} + (M_{j+1} − M_j) g_j + N_j e_j − N_{j−1} e_{j−1}.
+// Gathered per node rather than scattered per hinge, the nodes are independent.
+void PolygonChain::ring_node_forces() {
+  const double* __restrict m = hinge_m_.data();
+  const double* __restrict n = bar_n_.data();
+  const double* __restrict gx = bar_gx_.data();
+  const double* __restrict gy = bar_gy_.data();
+  const double* __restrict ex = bar_ex_.data();
+  const double* __restrict ey = bar_ey_.data();
+  for (int j = 0; j < n_ind_; ++j) {
+    const int jm = j == 0 ? n_full_ - 1 : j - 1, jp = j + 1 == n_full_ ? 0 : j + 1;
+    const double before = m[jm] - m[j], after = m[jp] - m[j];
+    fx_[j] = before * gx[jm] + after * gx[j] + n[j] * ex[j] - n[jm] * ex[jm];
+    fy_[j] = before * gy[jm] + after * gy[j] + n[j] * ey[j] - n[jm] * ey[jm];
+  }
+}
+
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
   const double turn0 = 2.0 * std::numbers::pi / n_full_;
   const bool velocities = c_bar_ > 0 || c_hinge_ > 0;
+  // The central difference's evaluation (flow_y_ set) takes the cheaper forms: 1/ℓ, the
+  // hinge rotation from the hinge's own bars by a series (polygon_hinge_angle.hpp), the node
+  // forces gathered per node (ring_node_forces). They change the round-off only, and the
+  // explicit run keeps Test 30's crush to three digits; IDA's step control carries round-off
+  // further (Test 30 free: 0.002 D, its energy balance 4× worse, README), so its residual,
+  // the Jacobians and Odeint keep the reference forms, to the bit as before.
+  const bool reference = flow_y_ == nullptr;
   for (int r = 0; r < n_rings_; ++r) {
     gather_ring(r, y, velocities);
-    for (const auto& range : bar_ranges_) ring_bars(range[0], range[1]);
+    if (reference)
+      for (const int k : ring_nodes_) fx_[k] = fy_[k] = 0.0;
+    for (const auto& range : bar_ranges_) ring_bars(range[0], range[1], reference);
+    // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N, the
+    // angle from bar k to bar k − 1 turned back by 2π/N. The hinges apart, so that their
+    // latencies overlap.
+    for (const int k : ring_hinges_) {
+      const int km = k == 0 ? n_full_ - 1 : k - 1;
+      if (reference) {
+        hinge_theta_[k] = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
+        continue;
+      }
+      const double tx = bar_ex_[km] * turn_cos_ + bar_ey_[km] * turn_sin_;
+      const double ty = bar_ey_[km] * turn_cos_ - bar_ex_[km] * turn_sin_;
+      hinge_theta_[k] = hinge_rotation(bar_ex_[k] * ty - bar_ey_[k] * tx, bar_ex_[k] * tx + bar_ey_[k] * ty, turn0);
+    }
     for (const int k : ring_bars_) {
       const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
       if (ring_hinge_[static_cast<std::size_t>(k)]) {
-        // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N
-        // from bar k to bar k − 1 turned back by 2π/N (polygon_hinge_angle.hpp), moment
-        // M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
-        const double tx = bar_ex_[km] * turn_cos_ + bar_ey_[km] * turn_sin_;
-        const double ty = bar_ey_[km] * turn_cos_ - bar_ex_[km] * turn_sin_;
-        const double theta = hinge_rotation(bar_ex_[k] * ty - bar_ey_[k] * tx, bar_ex_[k] * tx + bar_ey_[k] * ty, turn0);
+        // Moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ (ring_node_forces).
+        const double theta = hinge_theta_[k];
         const double ax = bar_gx_[km], ay = bar_gy_[km];
         const double bx = bar_gx_[k], by = bar_gy_[k];
         moment_[k] = k_theta_ * (theta - theta_p_[k]);
@@ -125,12 +184,15 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
           if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
           hinge_rate = rate;
         }
-        fx_[km] += M * ax;
-        fy_[km] += M * ay;
-        fx_[k] -= M * (ax + bx);
-        fy_[k] -= M * (ay + by);
-        fx_[kp] += M * bx;
-        fy_[kp] += M * by;
+        hinge_m_[k] = M;
+        if (reference) {  // scattered per hinge, in the reference order
+          fx_[km] += M * ax;
+          fy_[km] += M * ay;
+          fx_[k] -= M * (ax + bx);
+          fy_[k] -= M * (ay + by);
+          fx_[kp] += M * bx;
+          fy_[kp] += M * by;
+        }
         if (jac_) {
           // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
           // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
@@ -193,10 +255,13 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
         if (!half_ || k < n_full_ / 2) tally.damping += c_bar_ * rate * rate;
         bar_rate = rate;
       }
-      fx_[k] += N * bar_ex_[k];
-      fy_[k] += N * bar_ey_[k];
-      fx_[kp] -= N * bar_ex_[k];
-      fy_[kp] -= N * bar_ey_[k];
+      bar_n_[k] = N;
+      if (reference) {
+        fx_[k] += N * bar_ex_[k];
+        fy_[k] += N * bar_ey_[k];
+        fx_[kp] -= N * bar_ex_[k];
+        fy_[kp] -= N * bar_ey_[k];
+      }
       if (jac_) {
         // F_k = N e = −F_{k+1}: ∂F_k/∂p_{k+1} = k_m e eᵀ + (N/ℓ)(I − e eᵀ),
         // ∂F_k/∂v_{k+1} = c_b e eᵀ (the rotation of e in the damper term left out).
@@ -241,6 +306,7 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
         tally.max_bar_strain = std::max(tally.max_bar_strain, std::abs(bar_l_[k] - l0_) / l0_);
       }
     }
+    if (!reference) ring_node_forces();
     for (int j = 0; j < n_ind_; ++j) {
       const auto o = node_offset(r, j);
       const double w = node_weight(j);
@@ -249,6 +315,7 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       phi[o + 1] = y[o + 3];
       phi[o + 2] = on_axis ? 0.0 : w * fx_[j];
       phi[o + 3] = w * fy_[j];
+      phi[o + 4] = phi[o + 5] = 0.0;  // the flow rows, while the hinge does not flow
       if (in_.mass_damping_per_s > 0) {
         const double c = in_.mass_damping_per_s * w * m_node_;
         if (!on_axis) phi[o + 2] -= c * y[o + 2];
