@@ -123,7 +123,10 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   bar_gy_.resize(n_full_);
   plan_ring_pass();
   for (std::size_t i = 0; i < size_; ++i)
-    if (mu_[i] != 1.0) inertia_rows_.push_back(i);
+    if (mu_[i] != 1.0) {
+      inertia_rows_.push_back(i);
+      inverse_mu_.push_back(1.0 / mu_[i]);
+    }
   phi_.resize(size_);
   hinge_gx_.resize(n_full_);
   hinge_gy_.resize(n_full_);
@@ -322,6 +325,10 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 
 void PolygonChain::rhs(double t, const double* y, double* dydt) {
   evaluate(t, y, dydt, false);
+  if (flow_y_) {  // the central difference's evaluation: round-off as its other cheaper forms
+    for (std::size_t k = 0; k < inertia_rows_.size(); ++k) dydt[inertia_rows_[k]] *= inverse_mu_[k];
+    return;
+  }
   for (const std::size_t i : inertia_rows_) dydt[i] /= mu_[i];
 }
 

@@ -385,6 +385,9 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<double> bar_gx_, bar_gy_;
   std::vector<double> hinge_theta_, hinge_m_, bar_n_;  // θ, moment with damper, bar force
   void ring_node_forces();
+  void central_difference_ring_laws(int ring, Tally& tally);
+  double hinge_damper_rate(int km, int k, int kp) const;
+  double bar_damper_rate(int k, int kp) const;
   double turn_cos_ = 1.0, turn_sin_ = 0.0;  // of the rest turning 2π/N
   void plan_ring_pass();
   void gather_ring(int ring, const double* y, bool velocities);
@@ -392,6 +395,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // Rows of y′ = φ/μ whose μ is not 1 (the node velocities and free bodies): rhs divides
   // only these (x/1 is x).
   std::vector<std::size_t> inertia_rows_;
+  std::vector<double> inverse_mu_;  // 1/μ of inertia_rows_ (the central difference's rhs)
   double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
   double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
   double last_max_penetration_ = 0.0, last_max_strain_ = 0.0;

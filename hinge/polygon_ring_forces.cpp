@@ -110,6 +110,17 @@ void PolygonChain::ring_bars(int first, int last, bool reference) {
   }
 }
 
+// Rates of the Kelvin–Voigt dampers: θ̇ = ∂θ/∂p · v of hinge k (a, b the n/ℓ of bars k − 1,
+// k) and ℓ̇ = e · (v_{k+1} − v_k) of bar k.
+double PolygonChain::hinge_damper_rate(int km, int k, int kp) const {
+  const double ax = bar_gx_[km], ay = bar_gy_[km], bx = bar_gx_[k], by = bar_gy_[k];
+  return -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] + (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+}
+
+double PolygonChain::bar_damper_rate(int k, int kp) const {
+  return bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
+}
+
 // The node forces of the hinge moments M and bar forces N, node by node: hinge k puts
 // M a, −M (a + b), M b on nodes k − 1, k, k + 1 (a, b the n/ℓ of bars k − 1, k) and bar k
 // puts N e, −N e on nodes k, k + 1, so node j carries
@@ -122,12 +133,18 @@ void PolygonChain::ring_node_forces() {
   const double* __restrict gy = bar_gy_.data();
   const double* __restrict ex = bar_ex_.data();
   const double* __restrict ey = bar_ey_.data();
-  for (int j = 0; j < n_ind_; ++j) {
-    const int jm = j == 0 ? n_full_ - 1 : j - 1, jp = j + 1 == n_full_ ? 0 : j + 1;
+  double* __restrict fx = fx_.data();
+  double* __restrict fy = fy_.data();
+  const auto node = [&](int j, int jm, int jp) {
     const double before = m[jm] - m[j], after = m[jp] - m[j];
-    fx_[j] = before * gx[jm] + after * gx[j] + n[j] * ex[j] - n[jm] * ex[jm];
-    fy_[j] = before * gy[jm] + after * gy[j] + n[j] * ey[j] - n[jm] * ey[jm];
-  }
+    fx[j] = before * gx[jm] + after * gx[j] + n[j] * ex[j] - n[jm] * ex[jm];
+    fy[j] = before * gy[jm] + after * gy[j] + n[j] * ey[j] - n[jm] * ey[jm];
+  };
+  // The ends wrap round the ring; the nodes between run without index tests.
+  const int last = n_ind_ - 1;
+  node(0, n_full_ - 1, 1);
+  for (int j = 1; j < last; ++j) node(j, j - 1, j + 1);
+  node(last, last - 1, last + 1 == n_full_ ? 0 : last + 1);
 }
 
 void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
@@ -158,41 +175,34 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       const double ty = bar_ey_[km] * turn_cos_ - bar_ex_[km] * turn_sin_;
       hinge_theta_[k] = hinge_rotation(bar_ex_[k] * ty - bar_ey_[k] * tx, bar_ex_[k] * tx + bar_ey_[k] * ty, turn0);
     }
+    // The central difference: moments with the flow update and bar forces in two short
+    // loops (polygon_flow_update.cpp), node forces gathered; the reference forms below.
+    if (!reference) {
+      central_difference_ring_laws(r, tally);
+      ring_node_forces();
+    }
+    if (reference)
     for (const int k : ring_bars_) {
       const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
       if (ring_hinge_[static_cast<std::size_t>(k)]) {
-        // Moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ (ring_node_forces).
-        const double theta = hinge_theta_[k];
+        // Moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
         const double ax = bar_gx_[km], ay = bar_gy_[km];
         const double bx = bar_gx_[k], by = bar_gy_[k];
-        moment_[k] = k_theta_ * (theta - theta_p_[k]);
-        if (flow_y_ && k < n_ind_) {  // central difference only (polygon_flow_update.cpp)
-          // |M| ≤ M_y (flow's yield moment): no flow, so no update, and the flow rows below
-          // stay zero; the moment is noted for the next step's work.
-          const double yield = std::min(M0_ + H_ * flow_y_[node_offset(r, k) + 5], cap_);
-          const bool elastic = !(std::abs(moment_[k]) > yield);
-          hinge_elastic_[static_cast<std::size_t>(k)] = elastic;
-          if (elastic) flow_moment_[static_cast<std::size_t>(r * n_ind_ + k)] = moment_[k];
-          else update_hinge_flow(r, k, theta);
-        }
+        moment_[k] = k_theta_ * (hinge_theta_[k] - theta_p_[k]);
         double M = moment_[k];
         double hinge_rate = 0.0;
         if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
-          const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
-                              (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+          const double rate = hinge_damper_rate(km, k, kp);
           M += c_hinge_ * rate;
           if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
           hinge_rate = rate;
         }
-        hinge_m_[k] = M;
-        if (reference) {  // scattered per hinge, in the reference order
-          fx_[km] += M * ax;
-          fy_[km] += M * ay;
-          fx_[k] -= M * (ax + bx);
-          fy_[k] -= M * (ay + by);
-          fx_[kp] += M * bx;
-          fy_[kp] += M * by;
-        }
+        fx_[km] += M * ax;
+        fy_[km] += M * ay;
+        fx_[k] -= M * (ax + bx);
+        fy_[k] -= M * (ay + by);
+        fx_[kp] += M * bx;
+        fy_[kp] += M * by;
         if (jac_) {
           // F_i = −M g_i with g = ∂θ/∂p = (−a, a + b, −b) on (k−1, k, k+1):
           // ∂F_i/∂p_m ≈ −k_θ g_i g_mᵀ, ∂F_i/∂v_m = −c_θ g_i g_mᵀ, ∂F_i/∂θp_k = k_θ g_i.
@@ -250,18 +260,15 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       double N = k_m_ * (bar_l_[k] - l0_);
       double bar_rate = 0.0;
       if (c_bar_ > 0) {  // Kelvin–Voigt bar damper on ℓ̇ = e · (v_{k+1} − v_k)
-        const double rate = bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
+        const double rate = bar_damper_rate(k, kp);
         N += c_bar_ * rate;
         if (!half_ || k < n_full_ / 2) tally.damping += c_bar_ * rate * rate;
         bar_rate = rate;
       }
-      bar_n_[k] = N;
-      if (reference) {
-        fx_[k] += N * bar_ex_[k];
-        fy_[k] += N * bar_ey_[k];
-        fx_[kp] -= N * bar_ex_[k];
-        fy_[kp] -= N * bar_ey_[k];
-      }
+      fx_[k] += N * bar_ex_[k];
+      fy_[k] += N * bar_ey_[k];
+      fx_[kp] -= N * bar_ex_[k];
+      fy_[kp] -= N * bar_ey_[k];
       if (jac_) {
         // F_k = N e = −F_{k+1}: ∂F_k/∂p_{k+1} = k_m e eᵀ + (N/ℓ)(I − e eᵀ),
         // ∂F_k/∂v_{k+1} = c_b e eᵀ (the rotation of e in the damper term left out).
@@ -307,16 +314,17 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       }
     }
     if (!reference) ring_node_forces();
+    const bool mass_damping = in_.mass_damping_per_s > 0;
     for (int j = 0; j < n_ind_; ++j) {
       const auto o = node_offset(r, j);
-      const double w = node_weight(j);
       const bool on_axis = half_ && (j == 0 || j == n_ind_ - 1);
+      const double w = on_axis ? 0.5 : 1.0;  // node_weight
       phi[o] = on_axis ? 0.0 : y[o + 2];
       phi[o + 1] = y[o + 3];
       phi[o + 2] = on_axis ? 0.0 : w * fx_[j];
       phi[o + 3] = w * fy_[j];
       phi[o + 4] = phi[o + 5] = 0.0;  // the flow rows, while the hinge does not flow
-      if (in_.mass_damping_per_s > 0) {
+      if (mass_damping) {
         const double c = in_.mass_damping_per_s * w * m_node_;
         if (!on_axis) phi[o + 2] -= c * y[o + 2];
         phi[o + 3] -= c * y[o + 3];

@@ -55,7 +55,7 @@ TEST(PolygonHingeAngle, SeriesIsAtanToAnUlp) {
 // angles to 2e-15 rad, in the same range (−π − turn0, π − turn0] (N = 48 and N = 8).
 TEST(PolygonHingeAngle, RotationIsTheWrappedDifferenceOfTheBarAngles) {
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> beta(-pi_l, pi_l), theta(-3.3, 3.3), small(-0.5, 0.5);
+  std::uniform_real_distribution<double> beta(-std::numbers::pi, std::numbers::pi), theta(-3.3, 3.3), small(-0.5, 0.5);
   for (const int n : {48, 8}) {
     const double turn0 = 2.0 * std::numbers::pi / n;
     double worst = 0.0;
