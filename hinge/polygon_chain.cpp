@@ -119,6 +119,14 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   bar_ex_.resize(n_full_);
   bar_ey_.resize(n_full_);
   bar_beta_.resize(n_full_);
+  bar_gx_.resize(n_full_);
+  bar_gy_.resize(n_full_);
+  plan_ring_pass();
+  for (std::size_t i = 0; i < size_; ++i)
+    if (mu_[i] != 1.0) {
+      inertia_rows_.push_back(i);
+      inverse_mu_.push_back(1.0 / mu_[i]);
+    }
   phi_.resize(size_);
   hinge_gx_.resize(n_full_);
   hinge_gy_.resize(n_full_);
@@ -134,7 +142,8 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   flow_moment_.assign(static_cast<std::size_t>(n_rings_ * n_ind_), 0.0);
   candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
   candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
-  candidate_margin_ = 0.5 * t_;
+  candidate_node_start_.assign(static_cast<std::size_t>(2 * 3 * n_rings_), 0);
+  candidate_margin_ = t_;
 }
 
 std::vector<double> PolygonChain::component_scales() const {
@@ -253,7 +262,8 @@ void PolygonChain::add_contact_rows(std::size_t entity, double w, double penetra
 }
 
 void PolygonChain::evaluate(double t, const double* y, double* phi, bool record) {
-  std::fill(phi, phi + size_, 0.0);
+  // ring_forces comes first and sets every node row; the bodies' rows are sums.
+  std::fill(phi + body_base_, phi + size_, 0.0);
   std::fill(contact_k_row_.begin(), contact_k_row_.end(), 0.0);
   std::fill(contact_c_row_.begin(), contact_c_row_.end(), 0.0);
   landing_step_ = std::numeric_limits<double>::infinity();
@@ -315,7 +325,11 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 
 void PolygonChain::rhs(double t, const double* y, double* dydt) {
   evaluate(t, y, dydt, false);
-  for (std::size_t i = 0; i < size_; ++i) dydt[i] /= mu_[i];
+  if (flow_y_) {  // the central difference's evaluation: round-off as its other cheaper forms
+    for (std::size_t k = 0; k < inertia_rows_.size(); ++k) dydt[inertia_rows_[k]] *= inverse_mu_[k];
+    return;
+  }
+  for (const std::size_t i : inertia_rows_) dydt[i] /= mu_[i];
 }
 
 void PolygonChain::residual(double t, const double* y, const double* yp, double* r) {

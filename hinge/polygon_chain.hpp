@@ -321,6 +321,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void update_contact_boxes(const double* y);
   void build_candidates(const double* y);
   int contact_pass(int slave_ring, int master_ring, bool self) const;
+  bool near_own_segment(int node, int segment) const;
   void node_segment_contact(int slave_ring, int master_ring, bool self, const double* y,
                             double* phi, bool record, Tally& tally);
   double prescribed_speed(double t) const;
@@ -375,6 +376,26 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // Scratch (no allocation in the residual).
   std::vector<double> px_, py_, vx_, vy_, theta_p_, fx_, fy_, moment_;
   std::vector<double> bar_l_, bar_nx_, bar_ny_, bar_ex_, bar_ey_, bar_beta_;
+  // The ring pass (polygon_ring_forces.cpp): the full-ring nodes and bars it reads (all, or
+  // in the half model those that reach an independent node), which bars carry a hinge at
+  // their start, and each bar's n/ℓ (∂β/∂p of its far end) shared by its two hinges.
+  std::vector<int> ring_nodes_, ring_bars_, ring_hinges_;
+  std::vector<std::array<int, 2>> bar_ranges_;  // ring_bars_ as [first, last) ranges
+  std::vector<char> ring_hinge_;
+  std::vector<double> bar_gx_, bar_gy_;
+  std::vector<double> hinge_theta_, hinge_m_, bar_n_;  // θ, moment with damper, bar force
+  void ring_node_forces();
+  void central_difference_ring_laws(int ring, Tally& tally);
+  double hinge_damper_rate(int km, int k, int kp) const;
+  double bar_damper_rate(int k, int kp) const;
+  double turn_cos_ = 1.0, turn_sin_ = 0.0;  // of the rest turning 2π/N
+  void plan_ring_pass();
+  void gather_ring(int ring, const double* y, bool velocities);
+  void ring_bars(int first, int last, bool reference);
+  // Rows of y′ = φ/μ whose μ is not 1 (the node velocities and free bodies): rhs divides
+  // only these (x/1 is x).
+  std::vector<std::size_t> inertia_rows_;
+  std::vector<double> inverse_mu_;  // 1/μ of inertia_rows_ (the central difference's rhs)
   double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
   double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
   double last_max_penetration_ = 0.0, last_max_strain_ = 0.0;
@@ -387,6 +408,12 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<int> candidate_start_, candidate_segment_;  // [pass·(n_ind + 1) + j] → range
   std::vector<double> candidate_reference_;               // node x, y when the lists were built
   bool candidates_built_ = false;
+  // Of the last build: per pass p [start, end) at 2p, 2p + 1 into candidate_nodes_ (the slave nodes with a
+  // non-empty list, ascending), and the segments (ring·n_ind + a) listed anywhere, the only
+  // boxes an evaluation reads until the next build.
+  std::vector<int> candidate_node_start_, candidate_nodes_, candidate_boxes_;
+  std::vector<char> candidate_box_mark_;
+  void segment_box(int ring, int segment, const double* y);
   double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
   JacobianScatter* scatter_ = nullptr;   // set while analytic_jacobian_scatter runs (jac_ too)
@@ -404,6 +431,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double* flow_y_ = nullptr;
   double flow_dt_ = 0.0, flow_work_ = 0.0, flow_relaxation_ = 0.0;
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
+  // [j] of the ring in the pass while the flow update runs: |M| ≤ M_y, no flow.
+  std::vector<char> hinge_elastic_;
   double landing_depth_ = 0.0, landing_speed_ = 0.0;
   double landing_step_ = std::numeric_limits<double>::infinity();
   void note_landing(double gap, double rate) {

@@ -89,6 +89,42 @@ void PolygonChain::update_hinge_flow(int r, int k, double theta) {
   flow_moment_[h] = moment_[k];
 }
 
+// The ring laws of the central difference's evaluation (ring_forces, reference = false), ring
+// r: hinge moments M = k_θ (θ − θp) with the flow update, and bar forces N = k_m (ℓ − ℓ0),
+// each with its Kelvin–Voigt damper when explicit, into hinge_m_ and bar_n_.
+void PolygonChain::central_difference_ring_laws(int r, Tally& tally) {
+  for (const int k : ring_hinges_) {
+    const double theta = hinge_theta_[k];
+    moment_[k] = k_theta_ * (theta - theta_p_[k]);
+    if (k < n_ind_) {
+      // |M| ≤ M_y (flow's yield moment): no flow, so no update, and the flow rows stay zero
+      // (ring_forces); the moment is noted for the next step's work.
+      const double yield = std::min(M0_ + H_ * flow_y_[node_offset(r, k) + 5], cap_);
+      const bool elastic = !(std::abs(moment_[k]) > yield);
+      hinge_elastic_[static_cast<std::size_t>(k)] = elastic;
+      if (elastic) flow_moment_[static_cast<std::size_t>(r * n_ind_ + k)] = moment_[k];
+      else update_hinge_flow(r, k, theta);
+    }
+    double M = moment_[k];
+    if (c_hinge_ > 0) {
+      const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
+      const double rate = hinge_damper_rate(km, k, kp);
+      M += c_hinge_ * rate;
+      if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
+    }
+    hinge_m_[k] = M;
+  }
+  for (const int k : ring_bars_) {
+    double N = k_m_ * (bar_l_[k] - l0_);
+    if (c_bar_ > 0) {
+      const double rate = bar_damper_rate(k, k + 1 == n_full_ ? 0 : k + 1);
+      N += c_bar_ * rate;
+      if (!half_ || k < n_full_ / 2) tally.damping += c_bar_ * rate * rate;
+    }
+    bar_n_[k] = N;
+  }
+}
+
 void PolygonChain::rhs_with_flow_update(double t, double* y, double dt, double* dydt, double& plastic_work,
                                         double& min_relaxation_time) {
   flow_y_ = y;

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_hinge_angle.hpp"
 
 namespace ringcrush::hinge {
 
@@ -19,46 +20,179 @@ PolygonChain::Flow PolygonChain::flow(double moment, double plastic_sum) const {
   return {My, over, over > 0.0 ? C_vp_ * (q_ == 1.0 ? over : std::pow(over, q_)) : 0.0};
 }
 
-void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
-  const double turn0 = 2.0 * std::numbers::pi / n_full_;
-  // The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
-  // and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
-  // mirrored nodes and are skipped (their forces were computed and dropped; the sums on the
-  // independent nodes keep their order, so φ and the Jacobian are unchanged to the bit).
+// The half model's equations are those of nodes 0…N/2: a hinge k acts on k − 1, k, k + 1
+// and a bar k on k, k + 1, so hinges N/2 + 2…N − 2 and bars N/2 + 2…N − 3 reach only
+// mirrored nodes and are skipped, and nodes N/2 + 3…N − 3 are never read (their forces would
+// be dropped; the sums on the independent nodes keep their order). The lists are fixed by
+// the topology; the bars also as at most two index ranges, so that their loop vectorises.
+void PolygonChain::plan_ring_pass() {
   const int h = n_full_ / 2;
-  const auto bar_needed = [&](int k) { return !half_ || k <= h + 1 || k >= n_full_ - 2; };
-  const auto hinge_needed = [&](int k) { return !half_ || k <= h + 1 || k == n_full_ - 1; };
-  for (int r = 0; r < n_rings_; ++r) {
-    expand_ring(r, y);
-    for (int k = 0; k < n_full_; ++k) {
-      fx_[k] = fy_[k] = 0.0;
-      if (!bar_needed(k)) continue;
-      const int k1 = (k + 1) % n_full_;
-      const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
+  ring_nodes_.clear();
+  ring_bars_.clear();
+  ring_hinges_.clear();
+  bar_ranges_.clear();
+  ring_hinge_.assign(static_cast<std::size_t>(n_full_), 0);
+  for (int k = 0; k < n_full_; ++k) {
+    if (!half_ || k <= h + 2 || k >= n_full_ - 2) ring_nodes_.push_back(k);
+    if (!half_ || k <= h + 1 || k >= n_full_ - 2) {
+      ring_bars_.push_back(k);
+      if (bar_ranges_.empty() || bar_ranges_.back()[1] != k) bar_ranges_.push_back({k, k + 1});
+      else bar_ranges_.back()[1] = k + 1;
+    }
+    if (!half_ || k <= h + 1 || k == n_full_ - 1) {
+      ring_hinge_[static_cast<std::size_t>(k)] = 1;
+      ring_hinges_.push_back(k);
+    }
+  }
+  hinge_theta_.assign(static_cast<std::size_t>(n_full_), 0.0);
+  hinge_m_.assign(static_cast<std::size_t>(n_full_), 0.0);
+  bar_n_.assign(static_cast<std::size_t>(n_full_), 0.0);
+  // Node N is node 0 again (gather_ring), so bar k always ends at node k + 1.
+  px_.resize(static_cast<std::size_t>(n_full_) + 1);
+  py_.resize(static_cast<std::size_t>(n_full_) + 1);
+  const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  turn_cos_ = std::cos(turn0);
+  turn_sin_ = std::sin(turn0);
+  hinge_elastic_.assign(static_cast<std::size_t>(n_full_), 0);
+}
+
+// Positions and θp (velocities only for the Kelvin–Voigt dampers, the one reader) of the
+// nodes the ring's bars reach; the half model mirrors nodes N/2 + 1…N − 1.
+void PolygonChain::gather_ring(int ring, const double* y, bool velocities) {
+  for (const int k : ring_nodes_) {
+    const bool mirrored = half_ && k >= n_ind_;
+    const auto o = node_offset(ring, mirrored ? n_full_ - k : k);
+    px_[k] = mirrored ? -y[o] : y[o];
+    py_[k] = y[o + 1];
+    theta_p_[k] = y[o + 4];
+    if (velocities) {
+      vx_[k] = mirrored ? -y[o + 2] : y[o + 2];
+      vy_[k] = y[o + 3];
+    }
+  }
+  px_[n_full_] = px_[0];
+  py_[n_full_] = py_[0];
+}
+
+// Length, direction e and n/ℓ (∂β/∂p of the far end, n = e turned by +90°, read by the two
+// hinges the bar joins) of bars k ∈ [first, last), ending at node k + 1. The reference forms
+// (`reference`) divide by ℓ and take each bar's angle β by atan2; the central difference's
+// multiply by 1/ℓ and need no β (ring_forces).
+void PolygonChain::ring_bars(int first, int last, bool reference) {
+  const double* __restrict px = px_.data();
+  const double* __restrict py = py_.data();
+  double* __restrict bl = bar_l_.data();
+  double* __restrict ex = bar_ex_.data();
+  double* __restrict ey = bar_ey_.data();
+  double* __restrict gx = bar_gx_.data();
+  double* __restrict gy = bar_gy_.data();
+  if (reference) {
+    for (int k = first; k < last; ++k) {
+      const double bx = px[k + 1] - px[k], by = py[k + 1] - py[k];
       const double l = std::sqrt(bx * bx + by * by);
-      bar_l_[k] = l;
-      bar_ex_[k] = bx / l;
-      bar_ey_[k] = by / l;
-      bar_nx_[k] = -bar_ey_[k];
-      bar_ny_[k] = bar_ex_[k];
+      bl[k] = l;
+      ex[k] = bx / l;
+      ey[k] = by / l;
+      gx[k] = -ey[k] / l;
+      gy[k] = ex[k] / l;
       bar_beta_[k] = std::atan2(by, bx);
     }
-    for (int k = 0; k < n_full_; ++k) {
-      if (!bar_needed(k)) continue;
-      const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
-      if (hinge_needed(k)) {
-        // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N,
-        // moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
-        const double theta = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
-        const double ax = bar_nx_[km] / bar_l_[km], ay = bar_ny_[km] / bar_l_[km];
-        const double bx = bar_nx_[k] / bar_l_[k], by = bar_ny_[k] / bar_l_[k];
-        moment_[k] = k_theta_ * (theta - theta_p_[k]);
-        if (flow_y_ && k < n_ind_) update_hinge_flow(r, k, theta);  // central difference only
+    return;
+  }
+  for (int k = first; k < last; ++k) {
+    const double bx = px[k + 1] - px[k], by = py[k + 1] - py[k];
+    const double l = std::sqrt(bx * bx + by * by), inv = 1.0 / l;
+    bl[k] = l;
+    ex[k] = bx * inv;
+    ey[k] = by * inv;
+    gx[k] = -ey[k] * inv;
+    gy[k] = ex[k] * inv;
+  }
+}
+
+// Rates of the Kelvin–Voigt dampers: θ̇ = ∂θ/∂p · v of hinge k (a, b the n/ℓ of bars k − 1,
+// k) and ℓ̇ = e · (v_{k+1} − v_k) of bar k.
+double PolygonChain::hinge_damper_rate(int km, int k, int kp) const {
+  const double ax = bar_gx_[km], ay = bar_gy_[km], bx = bar_gx_[k], by = bar_gy_[k];
+  return -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] + (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+}
+
+double PolygonChain::bar_damper_rate(int k, int kp) const {
+  return bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
+}
+
+// The node forces of the hinge moments M and bar forces N, node by node: hinge k puts
+// M a, −M (a + b), M b on nodes k − 1, k, k + 1 (a, b the n/ℓ of bars k − 1, k) and bar k
+// puts N e, −N e on nodes k, k + 1, so node j carries
+//   (M_{j−1} − M_j) g_{j−1} + (M_{j+1} − M_j) g_j + N_j e_j − N_{j−1} e_{j−1}.
+// Gathered per node rather than scattered per hinge, the nodes are independent.
+void PolygonChain::ring_node_forces() {
+  const double* __restrict m = hinge_m_.data();
+  const double* __restrict n = bar_n_.data();
+  const double* __restrict gx = bar_gx_.data();
+  const double* __restrict gy = bar_gy_.data();
+  const double* __restrict ex = bar_ex_.data();
+  const double* __restrict ey = bar_ey_.data();
+  double* __restrict fx = fx_.data();
+  double* __restrict fy = fy_.data();
+  const auto node = [&](int j, int jm, int jp) {
+    const double before = m[jm] - m[j], after = m[jp] - m[j];
+    fx[j] = before * gx[jm] + after * gx[j] + n[j] * ex[j] - n[jm] * ex[jm];
+    fy[j] = before * gy[jm] + after * gy[j] + n[j] * ey[j] - n[jm] * ey[jm];
+  };
+  // The ends wrap round the ring; the nodes between run without index tests.
+  const int last = n_ind_ - 1;
+  node(0, n_full_ - 1, 1);
+  for (int j = 1; j < last; ++j) node(j, j - 1, j + 1);
+  node(last, last - 1, last + 1 == n_full_ ? 0 : last + 1);
+}
+
+void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally& tally) {
+  const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  const bool velocities = c_bar_ > 0 || c_hinge_ > 0;
+  // The central difference's evaluation (flow_y_ set) takes the cheaper forms: 1/ℓ, the
+  // hinge rotation from the hinge's own bars by a series (polygon_hinge_angle.hpp), the node
+  // forces gathered per node (ring_node_forces). They change the round-off only, and the
+  // explicit run keeps Test 30's crush to three digits; IDA's step control carries round-off
+  // further (Test 30 free: 0.002 D, its energy balance 4× worse, README), so its residual,
+  // the Jacobians and Odeint keep the reference forms, to the bit as before.
+  const bool reference = flow_y_ == nullptr;
+  for (int r = 0; r < n_rings_; ++r) {
+    gather_ring(r, y, velocities);
+    if (reference)
+      for (const int k : ring_nodes_) fx_[k] = fy_[k] = 0.0;
+    for (const auto& range : bar_ranges_) ring_bars(range[0], range[1], reference);
+    // Hinge k: turning τ = β_{k−1} − β_k (clockwise node order), rotation θ = τ − 2π/N, the
+    // angle from bar k to bar k − 1 turned back by 2π/N. The hinges apart, so that their
+    // latencies overlap.
+    for (const int k : ring_hinges_) {
+      const int km = k == 0 ? n_full_ - 1 : k - 1;
+      if (reference) {
+        hinge_theta_[k] = wrap_angle(bar_beta_[km] - bar_beta_[k]) - turn0;
+        continue;
+      }
+      const double tx = bar_ex_[km] * turn_cos_ + bar_ey_[km] * turn_sin_;
+      const double ty = bar_ey_[km] * turn_cos_ - bar_ex_[km] * turn_sin_;
+      hinge_theta_[k] = hinge_rotation(bar_ex_[k] * ty - bar_ey_[k] * tx, bar_ex_[k] * tx + bar_ey_[k] * ty, turn0);
+    }
+    // The central difference: moments with the flow update and bar forces in two short
+    // loops (polygon_flow_update.cpp), node forces gathered; the reference forms below.
+    if (!reference) {
+      central_difference_ring_laws(r, tally);
+      ring_node_forces();
+    }
+    if (reference)
+    for (const int k : ring_bars_) {
+      const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
+      if (ring_hinge_[static_cast<std::size_t>(k)]) {
+        // Moment M = k_θ (θ − θp); forces −M ∂θ/∂p with ∂β/∂p_end = n/ℓ.
+        const double ax = bar_gx_[km], ay = bar_gy_[km];
+        const double bx = bar_gx_[k], by = bar_gy_[k];
+        moment_[k] = k_theta_ * (hinge_theta_[k] - theta_p_[k]);
         double M = moment_[k];
         double hinge_rate = 0.0;
         if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
-          const double rate = -(ax * vx_[km] + ay * vy_[km]) + (ax + bx) * vx_[k] +
-                              (ay + by) * vy_[k] - (bx * vx_[kp] + by * vy_[kp]);
+          const double rate = hinge_damper_rate(km, k, kp);
           M += c_hinge_ * rate;
           if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
           hinge_rate = rate;
@@ -126,7 +260,7 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       double N = k_m_ * (bar_l_[k] - l0_);
       double bar_rate = 0.0;
       if (c_bar_ > 0) {  // Kelvin–Voigt bar damper on ℓ̇ = e · (v_{k+1} − v_k)
-        const double rate = bar_ex_[k] * (vx_[kp] - vx_[k]) + bar_ey_[k] * (vy_[kp] - vy_[k]);
+        const double rate = bar_damper_rate(k, kp);
         N += c_bar_ * rate;
         if (!half_ || k < n_full_ / 2) tally.damping += c_bar_ * rate * rate;
         bar_rate = rate;
@@ -179,15 +313,18 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
         tally.max_bar_strain = std::max(tally.max_bar_strain, std::abs(bar_l_[k] - l0_) / l0_);
       }
     }
+    if (!reference) ring_node_forces();
+    const bool mass_damping = in_.mass_damping_per_s > 0;
     for (int j = 0; j < n_ind_; ++j) {
       const auto o = node_offset(r, j);
-      const double w = node_weight(j);
       const bool on_axis = half_ && (j == 0 || j == n_ind_ - 1);
+      const double w = on_axis ? 0.5 : 1.0;  // node_weight
       phi[o] = on_axis ? 0.0 : y[o + 2];
       phi[o + 1] = y[o + 3];
       phi[o + 2] = on_axis ? 0.0 : w * fx_[j];
       phi[o + 3] = w * fy_[j];
-      if (in_.mass_damping_per_s > 0) {
+      phi[o + 4] = phi[o + 5] = 0.0;  // the flow rows, while the hinge does not flow
+      if (mass_damping) {
         const double c = in_.mass_damping_per_s * w * m_node_;
         if (!on_axis) phi[o + 2] -= c * y[o + 2];
         phi[o + 3] -= c * y[o + 3];
@@ -202,6 +339,10 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
       // Viscoplastic hinge (Cowper–Symonds): λ̇ = C ⟨|M|/M_y(ā) − 1⟩^q,
       // θp′ = λ̇ sign M, ā′ = λ̇; the plastic power is |M| λ̇.
       const double M = moment_[j];
+      if (flow_y_ && hinge_elastic_[static_cast<std::size_t>(j)]) {  // no flow (above)
+        if (record) tally.elastic += w * 0.5 * M * M / k_theta_;
+        continue;
+      }
       const Flow fl = flow(M, y[o + 5]);
       const double My = fl.yield_moment, over = fl.over, rate = fl.rate;
       if (over > 0.0) {

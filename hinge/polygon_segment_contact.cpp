@@ -22,15 +22,24 @@ int PolygonChain::contact_pass(int rs, int rm, bool self) const {
   return n_rings_ + 2 * std::min(rs, rm) + (rs > rm ? 1 : 0);
 }
 
+// A ring's own bars within two nodes of a node (either end) meet it at its hinges, not
+// across the ring: they are no contact partners of it (the full ring counts around).
+bool PolygonChain::near_own_segment(int j, int a) const {
+  const int b = a + 1 == n_ind_ ? 0 : a + 1;
+  const int da = std::abs(j - a), db = std::abs(j - b);
+  const int dista = half_ ? da : std::min(da, n_ind_ - da);
+  const int distb = half_ ? db : std::min(db, n_ind_ - db);
+  return dista <= 2 || distb <= 2;
+}
+
+void PolygonChain::segment_box(int r, int a, const double* y) {
+  const auto oa = node_offset(r, a), ob = node_offset(r, a + 1 == n_ind_ ? 0 : a + 1);
+  seg_box_[static_cast<std::size_t>(r * n_ind_ + a)] = {
+      std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
+      std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
+}
+
 void PolygonChain::update_contact_boxes(const double* y) {
-  const int segs = contact_segments();
-  for (int r = 0; r < n_rings_; ++r)
-    for (int a = 0; a < segs; ++a) {
-      const auto oa = node_offset(r, a), ob = node_offset(r, (a + 1) % n_ind_);
-      seg_box_[static_cast<std::size_t>(r * n_ind_ + a)] = {
-          std::min(y[oa], y[ob]) - t_, std::max(y[oa], y[ob]) + t_,
-          std::min(y[oa + 1], y[ob + 1]) - t_, std::max(y[oa + 1], y[ob + 1]) + t_};
-    }
   // The lists hold while every node is within half the margin (per coordinate) of where it
   // was: a segment left out had its end points' box, grown by t + margin, miss the node, so
   // its t-box still misses it.
@@ -40,7 +49,14 @@ void PolygonChain::update_contact_boxes(const double* y) {
     fresh = std::abs(y[o] - candidate_reference_[c]) <= 0.5 * candidate_margin_ &&
             std::abs(y[o + 1] - candidate_reference_[c + 1]) <= 0.5 * candidate_margin_;
   }
-  if (!fresh) build_candidates(y);
+  if (fresh) {  // only the boxes of listed segments are read
+    for (const int g : candidate_boxes_) segment_box(g / n_ind_, g % n_ind_, y);
+    return;
+  }
+  const int segs = contact_segments();
+  for (int r = 0; r < n_rings_; ++r)
+    for (int a = 0; a < segs; ++a) segment_box(r, a, y);
+  build_candidates(y);
 }
 
 void PolygonChain::build_candidates(const double* y) {
@@ -48,20 +64,35 @@ void PolygonChain::build_candidates(const double* y) {
   const bool plates = in_.joint == PolygonJoint::Plates;
   candidate_segment_.clear();
   std::fill(candidate_start_.begin(), candidate_start_.end(), 0);
+  candidate_nodes_.clear();
+  candidate_boxes_.clear();
+  candidate_box_mark_.assign(seg_box_.size(), 0);
   const double grow = candidate_margin_;  // on top of the t already in seg_box_
   auto build = [&](int rs, int rm, bool self) {
-    const auto base = static_cast<std::size_t>(contact_pass(rs, rm, self) * (n_ind_ + 1));
+    const int pass = contact_pass(rs, rm, self);
+    const auto base = static_cast<std::size_t>(pass * (n_ind_ + 1));
+    candidate_node_start_[2 * static_cast<std::size_t>(pass)] = static_cast<int>(candidate_nodes_.size());
     for (int j = 0; j < n_ind_; ++j) {
-      candidate_start_[base + static_cast<std::size_t>(j)] = static_cast<int>(candidate_segment_.size());
+      const auto first = candidate_segment_.size();
+      candidate_start_[base + static_cast<std::size_t>(j)] = static_cast<int>(first);
       const auto os = node_offset(rs, j);
       const double sx = y[os], sy = y[os + 1];
       for (int a = 0; a < segs; ++a) {
-        const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
-        if (sx >= sb[0] - grow && sx <= sb[1] + grow && sy >= sb[2] - grow && sy <= sb[3] + grow)
+        if (self && near_own_segment(j, a)) continue;  // never a candidate: left out once here
+        const auto g = static_cast<std::size_t>(rm * n_ind_ + a);
+        const auto& sb = seg_box_[g];
+        if (sx >= sb[0] - grow && sx <= sb[1] + grow && sy >= sb[2] - grow && sy <= sb[3] + grow) {
           candidate_segment_.push_back(a);
+          if (!candidate_box_mark_[g]) {
+            candidate_box_mark_[g] = 1;
+            candidate_boxes_.push_back(static_cast<int>(g));
+          }
+        }
       }
+      if (candidate_segment_.size() > first) candidate_nodes_.push_back(j);
     }
     candidate_start_[base + static_cast<std::size_t>(n_ind_)] = static_cast<int>(candidate_segment_.size());
+    candidate_node_start_[2 * static_cast<std::size_t>(pass) + 1] = static_cast<int>(candidate_nodes_.size());
   };
   for (int r = 0; r < n_rings_; ++r) {
     build(r, r, true);
@@ -79,8 +110,13 @@ void PolygonChain::build_candidates(const double* y) {
 
 void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double* y, double* phi,
                                         bool record, Tally& tally) {
-  const auto base = static_cast<std::size_t>(contact_pass(rs, rm, self) * (n_ind_ + 1));
-  for (int j = 0; j < n_ind_; ++j) {
+  const int pass = contact_pass(rs, rm, self);
+  const auto base = static_cast<std::size_t>(pass * (n_ind_ + 1));
+  // Only the slave nodes with candidates (in their order): the others meet no segment.
+  const int* node_first = candidate_nodes_.data() + candidate_node_start_[2 * static_cast<std::size_t>(pass)];
+  const int* node_last = candidate_nodes_.data() + candidate_node_start_[2 * static_cast<std::size_t>(pass) + 1];
+  for (const int* jt = node_first; jt != node_last; ++jt) {
+    const int j = *jt;
     const auto os = node_offset(rs, j);
     const double sx = y[os], sy = y[os + 1];
     double best = t_ * 2.0;
@@ -92,13 +128,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
       const int a = *it;
       const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
       if (sx < sb[0] || sx > sb[1] || sy < sb[2] || sy > sb[3]) continue;
-      const int b = (a + 1) % n_ind_;
-      if (self) {
-        const int da = std::abs(j - a), db = std::abs(j - b);
-        const int dista = half_ ? da : std::min(da, n_ind_ - da);
-        const int distb = half_ ? db : std::min(db, n_ind_ - db);
-        if (dista <= 2 || distb <= 2) continue;
-      }
+      const int b = a + 1 == n_ind_ ? 0 : a + 1;
       const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
       const double ax = y[oa], ay = y[oa + 1], bx = y[ob], by = y[ob + 1];
       const double ex = bx - ax, ey = by - ay;
@@ -114,7 +144,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
       }
     }
     if (best_a < 0) continue;
-    const int a = best_a, b = (a + 1) % n_ind_;
+    const int a = best_a, b = a + 1 == n_ind_ ? 0 : a + 1;
     if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});
     const double pen = t_ - best;
     if (landing_depth_ > 0.0 && pen <= 0.0 && best < 2.0 * t_) {  // closing speed −(v − v_q)·n
