@@ -108,7 +108,8 @@ struct FeSettings {
   // Explicit step Δt = explicit_safety · 2/ω_max. The defaults (assembled, 0.8) were decided on
   // the stability matrix's hard cells (README "FE dynamics", session 12): the assembled
   // estimate lost no case the element bound brought to rest, and 0.8 of it is 0.77 of the true
-  // limit; safety 0.9 lost a welded 100 m/s ×4 t/D 0.02 case that 0.8 brings to rest.
+  // limit; safety 0.9 lost a welded 100 m/s ×4 t/D 0.02 case that 0.8 brings to rest (and so
+  // did 0.78: that cell's lock-up is a matter of trajectory, but 0.9 is not shown to keep it).
   double explicit_safety = 0.8;
   // Explicit: ω_max of the stable step from the assembled power-iteration estimate × 1.05,
   // never above the element bound (fe/dynamics/assembled_eigenvalue.hpp: 15 % fewer steps on
