@@ -141,6 +141,7 @@ TEST(FeDynamicCli, BenchStepBoundAndSafetyReachTheMatrix) {
   EXPECT_EQ(data_rows(out / "matrix.csv"), 2u) << matrix;  // explicit and hht, welded
   EXPECT_TRUE(std::regex_search(matrix, std::regex("\\nexplicit/welded/[^\\n]*,assembled,0\\.9,[0-9.e-]+,[0-9.e-]+\\n")))
       << matrix;
+  EXPECT_TRUE(std::regex_search(matrix, std::regex("\\nhht/welded/[^\\n]*,,,[0-9.e-]+,[0-9.e-]+\\n"))) << matrix;
   EXPECT_FALSE(std::regex_search(matrix, std::regex("\\bnan\\b", std::regex::icase))) << matrix;
 }
 
