@@ -4,6 +4,7 @@
 //   ringcrush bench-fe-dynamic -o results/bench_fe_dynamic            # thesis scene, both drivers
 //   ringcrush bench-fe-dynamic --matrix --elements-around 16 --jobs 2 -o results/matrix
 //   ringcrush bench-fe-dynamic --matrix --filter 'explicit/welded/v30/' -o results/m30
+//   ringcrush bench-fe-dynamic --matrix --no-thesis --step-bound assembled --safety 0.9 -o DIR
 //
 // (i) The thesis dynamic scene (or SCENE) to arrest with the explicit and the HHT-α driver,
 //     and its `plates` variant with the scene's driver (verification e: no wrap, no
@@ -17,6 +18,9 @@
 //     ×1, ×4 × t/D 0.02, 0.03, 0.06 × both drivers × welded / free / plates chains (the Test 30
 //     scenes beside SCENE as the base). Every case ends at rest, at its end time, or with a named diagnosis
 //     (a SolveFailure or a refused non-finite result is caught and recorded); → matrix.csv.
+// --step-bound / --safety set the explicit step of every run (both parts) in place of the
+// scenes' fe.step_bound / fe.explicit_safety, so the matrix can be run at another setting
+// (the session-12 choice of the defaults, README "FE dynamics"); HHT runs ignore them.
 // --quick shrinks both parts to two rings on a coarse mesh and a short time (the test suite).
 #include <fmt/format.h>
 
@@ -49,6 +53,9 @@ struct BenchOptions {
   std::string filter;       // matrix: regex on the case name
   int jobs = 1;
   double end_time_s = 0;    // > 0: overrides the scenes' end time
+  std::string step_bound;   // "element" | "assembled": overrides the scenes' fe.step_bound
+  double safety = 0;        // with safety_given: overrides the scenes' fe.explicit_safety, in (0, 1]
+  bool safety_given = false;
 };
 
 // One run of one case, as a table row. A run that fails keeps its diagnosis.
@@ -98,6 +105,9 @@ Scene prepared(Scene s, const BenchOptions& o, int default_elements) {
   else if (o.elements_around > 0) s.fe.elements_around = o.elements_around;
   else if (default_elements > 0) s.fe.elements_around = default_elements;
   if (o.end_time_s > 0) s.analysis.end_time_s = o.end_time_s;
+  if (o.step_bound == "element") s.fe.step_bound = ExplicitStepBound::Element;
+  if (o.step_bound == "assembled") s.fe.step_bound = ExplicitStepBound::Assembled;
+  if (o.safety_given) s.fe.explicit_safety = o.safety;
   return s;
 }
 
@@ -224,7 +234,12 @@ std::vector<MatrixCase> matrix_cases(const BenchOptions& o) {
 
 void matrix_part(const BenchOptions& o, ResultsDir& out) {
   const auto cases = matrix_cases(o);
-  fmt::print("\nstability matrix: {} cases on {} thread(s)\n", cases.size(), o.jobs);
+  fmt::print("\nstability matrix: {} cases on {} thread(s)", cases.size(), o.jobs);
+  if (!cases.empty())
+    fmt::print(", explicit step: {} bound, safety {:g}",
+               cases.front().scene.fe.step_bound == ExplicitStepBound::Assembled ? "assembled" : "element",
+               cases.front().scene.fe.explicit_safety);
+  fmt::print("\n");
   std::vector<CaseOutcome> outcomes(cases.size());
   std::atomic<std::size_t> next{0};
   std::mutex print_mutex;
@@ -248,7 +263,13 @@ void matrix_part(const BenchOptions& o, ResultsDir& out) {
 
   std::ofstream csv(out.file("matrix.csv"));
   csv << "case,driver,joints,speed_m_s,mass_kg,t_over_D,status,end_reason,steps,rejected_steps,wall_time_s,"
-         "energy_balance_error,numerical_dissipation,impactor_final_velocity_m_s,max_crush_ratio,alternation_index\n";
+         "energy_balance_error,numerical_dissipation,impactor_final_velocity_m_s,max_crush_ratio,alternation_index,"
+         "step_bound,explicit_safety";
+  // The crush of every ring, so two settings can be compared ring by ring (all cases share
+  // the base scenes' ring count).
+  const int rings = cases.empty() ? 0 : cases.front().scene.rings.count;
+  for (int i = 0; i < rings; ++i) csv << fmt::format(",crush_ratio_ring_{}", i + 1);
+  csv << '\n';
   int at_rest = 0, end_time = 0, diagnosed = 0;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const auto& s = cases[k].scene;
@@ -256,18 +277,30 @@ void matrix_part(const BenchOptions& o, ResultsDir& out) {
     csv << fmt::format("{},{},{},{:g},{:g},{:g},{},{}", c.name, s.fe.solver == FeSolver::Hht ? "hht" : "explicit",
                        to_string(s.joints.type), s.impactor->velocity_m_s, s.impactor->mass_kg,
                        s.rings.wall_thickness_m / s.rings.outer_diameter_m, c.status, csv_text(c.reason));
+    // The explicit step's setting; empty for HHT, whose step control does not use it.
+    const std::string step =
+        s.fe.solver == FeSolver::Hht
+            ? std::string(",,")
+            : fmt::format(",{},{:g}", s.fe.step_bound == ExplicitStepBound::Assembled ? "assembled" : "element",
+                          s.fe.explicit_safety);
     if (!c.has_result) {
       ++diagnosed;
-      csv << ",,,,,,,,\n";
+      csv << ",,,,,,,," << step << std::string(static_cast<std::size_t>(rings), ',') << '\n';
       continue;
     }
     (c.reason == "end_time" ? end_time : at_rest) += 1;
     const auto& st = c.result.statistics;
-    csv << fmt::format(",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", st.steps, st.rejected_steps,
+    csv << fmt::format(",{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}", st.steps, st.rejected_steps,
                        st.wall_time_s, c.result.energy_balance_error, c.result.numerical_dissipation,
                        c.run.impactor_velocity_m_s.back(),
                        *std::max_element(c.run.crush_ratio.begin(), c.run.crush_ratio.end()),
-                       alternation(c.run.crush_ratio).index);
+                       alternation(c.run.crush_ratio).index)
+        << step;
+    for (int i = 0; i < rings; ++i)
+      csv << ','
+          << (static_cast<std::size_t>(i) < c.run.crush_ratio.size() ? fmt::format("{:.6g}", c.run.crush_ratio[i])
+                                                                       : std::string());
+    csv << '\n';
   }
   fmt::print("matrix: {} ended by the driver's own reason (rest, energy limit...), {} at the end time, "
              "{} with a diagnosis\n",
@@ -276,6 +309,8 @@ void matrix_part(const BenchOptions& o, ResultsDir& out) {
 
 void run_bench(const BenchOptions& o) {
   if (o.output.empty()) throw std::invalid_argument("bench-fe-dynamic: -o DIR is required");
+  if (o.safety_given && !(o.safety > 0 && o.safety <= 1))
+    throw std::invalid_argument(fmt::format("bench-fe-dynamic: --safety {} must lie in (0, 1]", o.safety));
   if (o.elements_around % 2 != 0)
     throw std::invalid_argument(fmt::format("bench-fe-dynamic: --elements-around {} must be even", o.elements_around));
   ResultsDir out(o.output);
@@ -301,7 +336,17 @@ void add_command(CLI::App& app) {
   cmd->add_option("--filter", o->filter, "Matrix: only cases whose name (driver/joints/vV/mM/tDX) matches");
   cmd->add_option("--jobs", o->jobs, "Matrix: cases run in parallel")->check(CLI::Range(1, 64));
   cmd->add_option("--end-time", o->end_time_s, "Override the end time of every run (s)")->check(CLI::PositiveNumber);
-  cmd->callback([o] { run_bench(*o); });
+  cmd->add_option("--step-bound", o->step_bound,
+                  "Explicit runs: stable-step omega_max from the element bound or the assembled estimate "
+                  "(overrides the scenes' fe.step_bound)")
+      ->check(CLI::IsMember({"element", "assembled"}));
+  auto* safety = cmd->add_option("--safety", o->safety,
+                                 "Explicit runs: fraction of the stable step, in (0, 1] (overrides the scenes' "
+                                 "fe.explicit_safety)");
+  cmd->callback([o, safety] {
+    o->safety_given = safety->count() > 0;
+    run_bench(*o);
+  });
 }
 
 const CommandRegistration registration{22, add_command};

@@ -48,7 +48,7 @@ struct FeOptions {
   int elements_around = 0;  // > 0: overrides fe.elements_around
   double end_time_s = 0;    // > 0: overrides analysis.end_time_s of a dynamic scene (timings)
   int threads = 0;          // element-loop threads of a dynamic run (0: automatic, chain_input.hpp)
-  std::string step_bound;   // explicit: "element" (default) | "assembled" (fe/chain/chain_input.hpp)
+  std::string step_bound;   // explicit: "element" | "assembled" (the scene default; compare/scene.hpp)
   double mass_scaling_dt = -1;  // ≥ 0: overrides fe.mass_scaling_dt (explicit; 0 = off)
   double penalty_step_fraction = -1;  // ≥ 0: overrides fe.contact_penalty_step_fraction (0 = off)
 };

@@ -125,3 +125,38 @@ TEST(FeDynamicCli, QuickBenchmarkWritesItsTables) {
   const std::string matrix = read_text(out / "matrix.csv");
   EXPECT_FALSE(std::regex_search(matrix, std::regex("\\bnan\\b", std::regex::icase))) << matrix;
 }
+
+// --step-bound and --safety reach every explicit matrix run (and are written beside it), so
+// the stability matrix can be run at the setting whose defaults are being decided; HHT runs
+// keep the scene's.
+TEST(FeDynamicCli, BenchStepBoundAndSafetyReachTheMatrix) {
+  const fs::path dir = scratch("bench_step");
+  const fs::path out = dir / "out";
+  const auto r = ringcrush("bench-fe-dynamic --quick --no-thesis --filter '/welded/' --step-bound assembled "
+                           "--safety 0.9 " + std::string(RINGCRUSH_SOURCE_DIR) +
+                           "/data/scenes/thesis_dynamic.toml -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("explicit step: assembled bound, safety 0.9"), std::string::npos) << r.output;
+  const std::string matrix = read_text(out / "matrix.csv");
+  EXPECT_EQ(data_rows(out / "matrix.csv"), 2u) << matrix;  // explicit and hht, welded
+  EXPECT_TRUE(std::regex_search(matrix, std::regex("\\nexplicit/welded/[^\\n]*,assembled,0\\.9,[0-9.e-]+,[0-9.e-]+\\n")))
+      << matrix;
+  EXPECT_TRUE(std::regex_search(matrix, std::regex("\\nhht/welded/[^\\n]*,,,[0-9.e-]+,[0-9.e-]+\\n"))) << matrix;
+  EXPECT_FALSE(std::regex_search(matrix, std::regex("\\bnan\\b", std::regex::icase))) << matrix;
+}
+
+// Bad values are named and exit 2 before any run.
+TEST(FeDynamicCli, BenchBadStepSettingsExitTwo) {
+  const fs::path dir = scratch("bench_bad");
+  const std::string tail = " --quick --no-thesis " + std::string(RINGCRUSH_SOURCE_DIR) +
+                           "/data/scenes/thesis_dynamic.toml -o " + (dir / "out").string();
+  for (const char* bad : {"--safety 1.5", "--safety 0", "--safety -0.2", "--safety nan"}) {
+    const auto r = ringcrush(std::string("bench-fe-dynamic ") + bad + tail);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--safety"), std::string::npos) << bad << ": " << r.output;
+  }
+  const auto bound = ringcrush("bench-fe-dynamic --step-bound exact" + tail);
+  EXPECT_EQ(bound.status, 2) << bound.output;
+  EXPECT_NE(bound.output.find("--step-bound"), std::string::npos) << bound.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
