@@ -261,17 +261,19 @@ struct ChainModel::Impl {
   }
 
   // Force-only pass on two threads (work_dealer.hpp): both threads take chunks of elements
-  // into their slots, then each sums one of the two fixed halves in element order — the
+  // into their slots — the caller from the front, the helper from the back (`from_back`),
+  // so that each computes nearly the same elements every step and mostly those of the half
+  // it sums — then each sums one of the two fixed halves in element order — the
   // caller [0, split) into force, the helper [split, ne) into helper_force — exactly the sums
   // elements() forms on one thread, so the result is bitwise the one-thread result whichever
   // thread computed which element.
-  void deal(const Eigen::VectorXd& u, bool viscous) {
+  void deal(const Eigen::VectorXd& u, bool viscous, bool from_back) {
     Cps8Output eo;
     ElementVector fv;
     int b = 0, end = 0;
     try {
       LaneResults g;
-      while (dealer.next(b, end)) {
+      while (from_back ? dealer.next_back(b, end) : dealer.next(b, end)) {
         if (end - b == kCps8Lanes) {
           evaluate_lanes(b, u, viscous, g);
           for (int l = 0; l < kCps8Lanes; ++l) {
@@ -382,7 +384,7 @@ struct ChainModel::Impl {
       if (j.viscous) m.helper_viscous.setZero();
       const int ne = static_cast<int>(m.topo.mesh.elements.size());
       if (!j.want_tangent) {
-        m.deal(*j.u, j.viscous);
+        m.deal(*j.u, j.viscous, true);
         // The contact passes the caller has not taken yet (once it has begun the contact).
         for (unsigned turn = 0; !m.contact_ready.load(std::memory_order_acquire);) spin_wait_turn(turn);
         m.deal_contact();
@@ -744,7 +746,7 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
         const auto t0 = std::chrono::steady_clock::now();
         m.deal_contact();
         contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        m.deal(u, viscous);
+        m.deal(u, viscous, false);
       } catch (...) {
         m.contact_dealer.fail();
         m.contact_ready.store(true, std::memory_order_release);
