@@ -13,9 +13,11 @@
 // With the caller at the front and the helper at the back, each thread computes nearly the
 // same items every step — they meet where the step's balance puts them, which moves by a
 // chunk or two — so an item's state stays in the cache of the core that computes it, and each
-// fixed half of the sums reads mostly its own thread's slots (README "FE dynamics", session
-// 12: one front counter dealt the elements to alternating cores and the sums read the other
-// core's slots). Which thread takes a chunk still changes no result.
+// fixed half of the sums reads mostly its own thread's slots. (With one front counter the
+// helper computed the first elements while the caller searched the contact, so the caller's
+// half of the sums read the helper's slots and the meeting point moved from step to step; on
+// a VM whose cores exchange cache lines slowly that cost a third of the two-thread step,
+// README "FE dynamics", session 12.) Which thread takes a chunk still changes no result.
 #pragma once
 
 #include <algorithm>
