@@ -121,6 +121,16 @@ struct ChainModel::Impl {
   std::unique_ptr<ForkJoin> fork;
   int split = 0;
   Eigen::VectorXd helper_force, helper_viscous;
+  // The dofs [helper_lo, helper_lo + helper_len) of the nodes of elements [split, ne): the
+  // only ones their sums touch, so the only ones zeroed and added (elsewhere helper_force and
+  // helper_viscous stay +0.0, and adding +0.0 to a sum that started at +0.0 changes no bit).
+  // With two threads these vectors are written by the helper and read by the caller: on a VM
+  // whose cores exchange cache lines slowly, every line not moved counts (README session 12).
+  Eigen::Index helper_lo = 0, helper_len = 0;
+  void zero_helper_sums(bool viscous) {
+    helper_force.segment(helper_lo, helper_len).setZero();
+    if (viscous) helper_viscous.segment(helper_lo, helper_len).setZero();
+  }
   // commit() moved x_n (++xn_epoch): an element's stored geometry is on x_n when its epoch
   // equals xn_epoch; otherwise it is re-derived in the next element pass that reads it — or,
   // in the force-only lane pass, formed inside the kernel and not stored at all
@@ -261,17 +271,19 @@ struct ChainModel::Impl {
   }
 
   // Force-only pass on two threads (work_dealer.hpp): both threads take chunks of elements
-  // into their slots, then each sums one of the two fixed halves in element order — the
+  // into their slots — the caller from the front, the helper from the back (`from_back`),
+  // so that each computes nearly the same elements every step and mostly those of the half
+  // it sums — then each sums one of the two fixed halves in element order — the
   // caller [0, split) into force, the helper [split, ne) into helper_force — exactly the sums
   // elements() forms on one thread, so the result is bitwise the one-thread result whichever
   // thread computed which element.
-  void deal(const Eigen::VectorXd& u, bool viscous) {
+  void deal(const Eigen::VectorXd& u, bool viscous, bool from_back) {
     Cps8Output eo;
     ElementVector fv;
     int b = 0, end = 0;
     try {
       LaneResults g;
-      while (dealer.next(b, end)) {
+      while (from_back ? dealer.next_back(b, end) : dealer.next(b, end)) {
         if (end - b == kCps8Lanes) {
           evaluate_lanes(b, u, viscous, g);
           for (int l = 0; l < kCps8Lanes; ++l) {
@@ -378,11 +390,10 @@ struct ChainModel::Impl {
     static void run(void* p) {
       auto& j = *static_cast<ElementJob*>(p);
       auto& m = *j.model;
-      m.helper_force.setZero();
-      if (j.viscous) m.helper_viscous.setZero();
+      m.zero_helper_sums(j.viscous);
       const int ne = static_cast<int>(m.topo.mesh.elements.size());
       if (!j.want_tangent) {
-        m.deal(*j.u, j.viscous);
+        m.deal(*j.u, j.viscous, true);
         // The contact passes the caller has not taken yet (once it has begun the contact).
         for (unsigned turn = 0; !m.contact_ready.load(std::memory_order_acquire);) spin_wait_turn(turn);
         m.deal_contact();
@@ -551,6 +562,16 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.split = static_cast<int>(0.45 * ne);
   m.helper_force = Eigen::VectorXd::Zero(2 * nodes);
   m.helper_viscous = Eigen::VectorXd::Zero(2 * nodes);
+  if (m.split < ne) {
+    int lo = nodes, hi = -1;
+    for (int e = m.split; e < ne; ++e)
+      for (int n : mesh_.elements[e]) {
+        lo = std::min(lo, n);
+        hi = std::max(hi, n);
+      }
+    m.helper_lo = 2 * static_cast<Eigen::Index>(lo);
+    m.helper_len = 2 * static_cast<Eigen::Index>(hi + 1 - lo);
+  }
   if (two) {
     m.fork = std::make_unique<ForkJoin>();
     m.slot_force.resize(ne);
@@ -744,7 +765,7 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
         const auto t0 = std::chrono::steady_clock::now();
         m.deal_contact();
         contact_time += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        m.deal(u, viscous);
+        m.deal(u, viscous, false);
       } catch (...) {
         m.contact_dealer.fail();
         m.contact_ready.store(true, std::memory_order_release);
@@ -765,12 +786,11 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     contact();
     if (want_tangent) prepare_tangent();
     m.elements(0, m.split, u, want_tangent, false, out.force.data(), q_main, elastic, plastic);
-    m.helper_force.setZero();
-    if (viscous) m.helper_viscous.setZero();
+    m.zero_helper_sums(viscous);
     m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), viscous ? m.helper_viscous.data() : nullptr,
                helper_elastic, helper_plastic);
   }
-  out.force += m.helper_force;
+  out.force.segment(m.helper_lo, m.helper_len) += m.helper_force.segment(m.helper_lo, m.helper_len);
   elastic += helper_elastic;
   plastic += helper_plastic;
   for (const auto& c : m.contributions) {
@@ -781,7 +801,7 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     if (want_tangent) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
   }
   if (viscous) {
-    out.viscous_force += m.helper_viscous;
+    out.viscous_force.segment(m.helper_lo, m.helper_len) += m.helper_viscous.segment(m.helper_lo, m.helper_len);
     out.force += out.viscous_force;
   }
   out.elastic_energy = elastic;
