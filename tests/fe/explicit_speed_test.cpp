@@ -20,6 +20,7 @@
 #include "fe/dynamics/explicit_driver.hpp"
 #include "fe/element/bulk_viscosity.hpp"
 #include "fe/kinematics.hpp"
+#include "threaded_chain_pass.hpp"
 
 using namespace ringcrush::fe;
 
@@ -142,40 +143,20 @@ TEST(ExplicitSpeed, ChainPassWithViscosityIsThreadIndependent) {
     in.joints = JointKind::Free;
     in.integration = rule;
     in.bulk_viscosity = 0.06;
-    in.threads = 1;
-    ChainModel serial(in);
-    in.threads = 2;
-    ChainModel threaded(in);
-    std::mt19937 gen(9);
-    std::uniform_real_distribution<double> d(-2e-6, 2e-6);
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
-    for (int step = 0; step < 3; ++step) {
-      for (int i = 0; i < serial.dofs(); ++i) u(i) += d(gen);
-      for (int dof : serial.fixed_dofs()) u(dof) = 0;
-      SystemEvaluation a, b;
-      serial.set_increment_time(5e-8);
-      threaded.set_increment_time(5e-8);
-      serial.evaluate(u, false, a);
-      threaded.evaluate(u, false, b);
-      ASSERT_EQ(a.viscous_force.size(), serial.dofs());
-      EXPECT_EQ(a.force, b.force);
-      EXPECT_EQ(a.viscous_force, b.viscous_force);
-      EXPECT_EQ(a.elastic_energy, b.elastic_energy);
-      EXPECT_GT(a.viscous_force.norm(), 0.0);
+    test_support::ThreadedChainPass pass(in);
+    pass.run(3, 9, [&](const SystemEvaluation& a) {
       // Momentum: the viscous forces of every element sum to zero.
       double fx = 0, fy = 0;
-      for (int n = 0; n < serial.dofs() / 2; ++n) {
+      for (int n = 0; n < pass.serial.dofs() / 2; ++n) {
         fx += a.viscous_force(2 * n);
         fy += a.viscous_force(2 * n + 1);
       }
       EXPECT_LT(std::abs(fx) + std::abs(fy), 1e-9 * a.viscous_force.lpNorm<Eigen::Infinity>());
-      serial.commit(u);  // the next pass re-derives the geometry on this configuration
-      threaded.commit(u);
-    }
+    });
     // Zero increment time: no viscous force at all.
-    serial.set_increment_time(0);
+    pass.serial.set_increment_time(0);
     SystemEvaluation c;
-    serial.evaluate(u, false, c);
+    pass.serial.evaluate(pass.u, false, c);
     EXPECT_EQ(c.viscous_force.size(), 0);
   }
 }

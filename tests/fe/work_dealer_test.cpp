@@ -11,12 +11,12 @@
 
 #include <algorithm>
 #include <functional>
-#include <random>
 #include <thread>
 #include <vector>
 
 #include "fe/chain/chain_model.hpp"
 #include "fe/dynamics/work_dealer.hpp"
+#include "threaded_chain_pass.hpp"
 
 using namespace ringcrush::fe;
 
@@ -88,31 +88,8 @@ TEST(WorkDealer, ChainPassFromBothEndsIsTheOneThreadPass) {
     in.joints = JointKind::Free;
     in.integration = rule;
     in.bulk_viscosity = 0.06;
-    in.threads = 1;
-    ChainModel serial(in);
-    in.threads = 2;
-    ChainModel threaded(in);
-    ASSERT_EQ(serial.mesh().elements.size(), 18u);
-    std::mt19937 gen(21);
-    std::uniform_real_distribution<double> d(-2e-6, 2e-6);
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(serial.dofs());
-    for (int step = 0; step < 3; ++step) {
-      for (int i = 0; i < serial.dofs(); ++i) u(i) += d(gen);
-      for (int dof : serial.fixed_dofs()) u(dof) = 0;
-      SystemEvaluation a, b;
-      serial.set_increment_time(5e-8);
-      threaded.set_increment_time(5e-8);
-      serial.evaluate(u, false, a);
-      threaded.evaluate(u, false, b);
-      const std::string where = "step " + std::to_string(step);
-      EXPECT_EQ(a.force, b.force) << where;
-      EXPECT_EQ(a.viscous_force, b.viscous_force) << where;
-      EXPECT_EQ(a.elastic_energy, b.elastic_energy) << where;
-      EXPECT_EQ(a.plastic_work, b.plastic_work) << where;
-      EXPECT_GT(a.force.norm(), 0.0) << where;
-      EXPECT_GT(a.viscous_force.norm(), 0.0) << where;
-      serial.commit(u);
-      threaded.commit(u);
-    }
+    test_support::ThreadedChainPass pass(in);
+    ASSERT_EQ(pass.serial.mesh().elements.size(), 18u);
+    pass.run(3, 21);
   }
 }
