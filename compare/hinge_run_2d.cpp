@@ -143,6 +143,8 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   po.step_breakdown = s.step_breakdown;
   po.central_difference_power_bound = s.central_difference_power_bound;
   po.central_difference_landing_depth_m = s.central_difference_landing_depth_ratio * scene.rings.wall_thickness_m;
+  if (po.integrator == hinge::PolygonIntegrator::CentralDifference)
+    po.energy_error_limit = s.central_difference_energy_error_limit;
   run.relative_tolerance_used = options.relative_tolerance >= s.min_relative_tolerance
                                     ? options.relative_tolerance
                                     : s.default_relative_tolerance;
@@ -306,6 +308,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
         {"plastic_tolerance_factor", s.plastic_tolerance_factor},
         {"central_difference_safety", s.central_difference_safety},
         {"central_difference_implicit_dampers", s.central_difference_implicit_dampers},
+        {"central_difference_energy_error_limit", s.central_difference_energy_error_limit},
         {"wrap_min_inverted_arc_fraction", s.wrap_min_inverted_arc_fraction}}}};
   if (options.integrator == HingeIntegrator::CentralDifference)
     r.extra["central_difference"] = {{"min_step_s", raw.min_step_s},

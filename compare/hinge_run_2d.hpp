@@ -72,6 +72,11 @@ struct Level2Settings {
   // contact_landing_depth; `bench-hinge2 --landing`); 0: off. 0.001 t keeps the balance under
   // 1e-4 on Test 30 and under 4e-4 at 50 m/s, where 0.002 t exceeds 1e-3.
   double central_difference_landing_depth_ratio = 0.001;
+  // central_difference: the run stops with a named error (hinge::PolygonEnergyLimitError) when
+  // its |energy balance| exceeds this fraction of KE0 at an output sample (PolygonRunOptions::
+  // energy_error_limit; the FE's energy_error_limit, 0.05): a step past the stable one diverges
+  // into a bounded garbage state, not a NaN (issue 7). Sound runs stay ≤ 1e-3 (README).
+  double central_difference_energy_error_limit = 0.05;
   // Wrap flag: S > fraction · πR (compare/measures inverted_arc_length) decides; W is
   // reported beside it (measured at the impactor's arrest). THEORY §4.6 proposes 0.1 πR
   // (7.7 mm) and asks for calibration. On the polygon a single kinked node gives 2ℓ0 ≈ 6.4 mm

@@ -16,6 +16,9 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   if (!(options.max_step_s >= 0.0))
     throw std::invalid_argument("PolygonCentralDifference: max_step_s must be ≥ 0, got " +
                                 std::to_string(options.max_step_s));
+  if (!(options.fixed_step_s >= 0.0 && std::isfinite(options.fixed_step_s)))
+    throw std::invalid_argument("PolygonCentralDifference: fixed_step_s must be ≥ 0 and finite, got " +
+                                std::to_string(options.fixed_step_s));
   if (y_.size() != chain.size())
     throw std::invalid_argument("PolygonCentralDifference: state size " + std::to_string(y_.size()) +
                                 " is not the chain's " + std::to_string(chain.size()));
@@ -46,7 +49,9 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
     for (std::size_t o = 2; o < nodes_end_; o += 6)
       for (std::size_t i = o; i < o + 2; ++i) a_[i] -= damper_[i] / chain_.mass_row(i);
   }
-  if (options.power_iteration_bound) {
+  // The power estimate is of the undamped stiffness: it bounds the implicit dampers' step
+  // only (CentralDifferenceOptions::power_iteration_bound).
+  if (options.power_iteration_bound && options.implicit_ring_dampers) {
     if (!(options.power_margin >= 1.0) || !(options.power_refresh_steps >= 1) ||
         !(options.power_min_refresh_steps >= 1) || !(options.power_refresh_change > 0.0))
       throw std::invalid_argument(
@@ -79,6 +84,7 @@ void PolygonCentralDifference::update_stable_step() {
     dt_stable_ = landing;
     ++stats_.landing_steps;
   }
+  if (options_.fixed_step_s > 0.0) dt_stable_ = options_.fixed_step_s;
 }
 
 double PolygonCentralDifference::advance(double t_end) {
@@ -153,7 +159,10 @@ void PolygonCentralDifference::step(double dt) {
   stats_.min_step_s = std::min(stats_.min_step_s, dt);
   stats_.max_step_s = std::max(stats_.max_step_s, dt);
   update_stable_step();
-  if (!(dt_stable_ > 0.0) || !std::isfinite(y_[acc]))
+  if (!std::isfinite(y_[acc]))
+    throw std::runtime_error("PolygonCentralDifference: non-finite plastic work at t = " + std::to_string(t_) +
+                             " (the integration diverged)");
+  if (!(dt_stable_ > 0.0))
     throw std::runtime_error("PolygonCentralDifference: no stable step at t = " + std::to_string(t_));
 }
 

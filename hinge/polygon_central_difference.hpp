@@ -55,7 +55,11 @@ struct CentralDifferenceOptions {
   // still shortens the step at once. Gershgorin is 1.28–1.45× pessimistic on Test 30
   // (bench-hinge2 --step-breakdown): 17–26 % fewer steps. Alone it takes the impact's
   // energy-balance error over 1e-3 (free, plated); with the contact landing below the balance
-  // stays ≈ 2e-4 (README). Off by default.
+  // stays ≈ 2e-4 (README). Off by default. Implicit dampers only: θ is of the undamped
+  // stiffness, and with explicit dampers the bound is the damped (2/ω)(√(1 + ξ²) − ξ) with
+  // ξ ≈ 1 — ρ from the undamped 2/ω_max would lift that step back to ≈ 2/ω_max, 2.4× past
+  // the damped limit (issue 7: the explicit-damper run diverged to a balance of 1e11). With
+  // explicit dampers the option is ignored and the damped Gershgorin bound sets the step.
   bool power_iteration_bound = false;
   double power_margin = 1.1;  // on θ, ≥ 1 (θ approaches λ_max from below)
   int power_refresh_steps = 200, power_min_refresh_steps = 10;
@@ -67,6 +71,10 @@ struct CentralDifferenceOptions {
   // and the fast part of an impact is stepped at ≤ depth per step. 0: off.
   double contact_landing_depth = 0.0;
   double contact_landing_speed = 1.0;  // m/s
+  // > 0: every step is this (s) whatever the bound and the landing (advance still meets its
+  // targets exactly): step-convergence studies, and a step above the bound to show that the
+  // divergence is caught (the run's energy limit, polygon_simulation.hpp). 0: the bound.
+  double fixed_step_s = 0.0;
 };
 
 struct CentralDifferenceStatistics {

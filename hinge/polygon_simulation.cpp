@@ -57,6 +57,15 @@ class Recorder {
     for (double value : std::vector<double>(y, y + chain_.size()))
       if (!std::isfinite(value))
         throw std::runtime_error("polygon chain: non-finite state at t = " + std::to_string(t));
+    if (options_.energy_error_limit > 0 && out_.initial_energy_j > 0) {
+      const double error = std::abs(balance_.back()) / out_.initial_energy_j;
+      if (!(error <= options_.energy_error_limit))
+        throw PolygonEnergyLimitError(
+            "polygon chain: energy limit at t = " + std::to_string(t) + " s: |balance| = " +
+                std::to_string(error) + " of the initial kinetic energy exceeds energy_error_limit " +
+                std::to_string(options_.energy_error_limit) + " (the integration diverged?)",
+            t, error);
+    }
     if (out_.arrest_time_s < 0 && t > 0 && v <= 0.0) out_.arrest_time_s = t;
     if (options_.stop_at_arrest && out_.arrest_time_s >= 0 &&
         t >= out_.arrest_time_s + options_.settle_time_s)
@@ -85,6 +94,8 @@ class Recorder {
 PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const PolygonRunOptions& options) {
   if (!(options.output_interval_s > 0) || !(options.end_time_s > 0))
     throw std::invalid_argument("run_polygon_chain: output interval and end time must be positive");
+  if (!(options.energy_error_limit >= 0))
+    throw std::invalid_argument("run_polygon_chain: energy_error_limit must be ≥ 0 (0: none)");
   const auto start = std::chrono::steady_clock::now();
   PolygonChain chain(input);
   PolygonRunOutput out;
@@ -142,6 +153,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     co.implicit_ring_dampers = options.central_difference_implicit_dampers;
     co.power_iteration_bound = options.central_difference_power_bound;
     co.contact_landing_depth = options.central_difference_landing_depth_m;
+    co.fixed_step_s = options.central_difference_fixed_step_s;
     PolygonCentralDifference cd(chain, 0.0, y, co);
     march(cd);
     const auto& s = cd.statistics();

@@ -4,6 +4,8 @@
 // first yield of every hinge. Plain structs in and out: no scene, no TOML (DESIGN.md).
 #pragma once
 
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -42,11 +44,30 @@ struct PolygonRunOptions {
   bool central_difference_implicit_dampers = true;  // CentralDifferenceOptions::implicit_ring_dampers
   bool central_difference_power_bound = false;      // CentralDifferenceOptions::power_iteration_bound
   double central_difference_landing_depth_m = 0.0;  // CentralDifferenceOptions::contact_landing_depth
+  double central_difference_fixed_step_s = 0.0;     // CentralDifferenceOptions::fixed_step_s
+  // > 0: the run stops with PolygonEnergyLimitError at the first output sample whose
+  // |energy balance| / KE0 exceeds this (impact runs: a driven run starts with KE0 = 0 and is
+  // not checked). The explicit central difference diverges past its stable step into a
+  // bounded garbage state (issue 7: 1.8 M steps to a balance of 1e11, no NaN); the limit is the
+  // FE drivers' energy_error_limit. 0: no limit.
+  double energy_error_limit = 0.0;
   // Any integrator: at every output sample, the Gershgorin step with each stiffness term left
   // out and the power-iteration estimate of 2/ω_max (stable_step_breakdown,
   // polygon_stiffness_spectrum.hpp) into PolygonRunOutput::step_breakdown. A diagnostic: the
   // run itself is unchanged (the breakdown re-evaluates the chain after the sample).
   bool step_breakdown = false;
+};
+
+// The run's energy balance exceeded PolygonRunOptions::energy_error_limit: the integration
+// diverged (or the step is too long for the balance asked for).
+class PolygonEnergyLimitError : public std::runtime_error {
+ public:
+  PolygonEnergyLimitError(const std::string& what, double time_s, double relative_error)
+      : std::runtime_error(what), time_s_(time_s), relative_error_(relative_error) {}
+  double time_s() const { return time_s_; }                  // of the sample that exceeded it
+  double relative_error() const { return relative_error_; }  // |balance| / KE0 there
+ private:
+  double time_s_, relative_error_;
 };
 
 struct PolygonHistory {  // full structure (both halves), SI

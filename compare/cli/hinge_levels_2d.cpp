@@ -149,7 +149,10 @@ void bench(const BenchOptions& o) {
   if (opt.integrator == HingeIntegrator::CentralDifference)
     fmt::print("central difference: {} dampers, {} step bound ({} estimates), landing {:g} t ({} steps), safety {:g}, "
                "steps {:.3g}–{:.3g} s ({:.2f} us per step), shortest flow relaxation time {:.3g} s\n",
-               o.dampers, o.step_bound, last.raw.power_refreshes, settings.central_difference_landing_depth_ratio,
+               o.dampers,
+               o.step_bound == "power" && o.dampers == "explicit" ? "gershgorin (power needs implicit dampers)"
+                                                                   : o.step_bound,
+               last.raw.power_refreshes, settings.central_difference_landing_depth_ratio,
                last.raw.landing_steps, settings.central_difference_safety,
                last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
@@ -180,7 +183,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--dampers", o->dampers,
                   "central_difference: Kelvin–Voigt ring dampers implicit (default) | explicit");
   cmd->add_option("--step-bound", o->step_bound,
-                  "central_difference: power (default: power-iteration estimate of omega_max) | gershgorin");
+                  "central_difference: power (default: power-iteration estimate of omega_max; implicit dampers "
+                  "only, explicit ones keep the damped bound) | gershgorin");
   cmd->add_option("--landing", o->landing,
                   "central_difference: contact landing depth as a fraction of t (default 0.001; 0: off)");
   cmd->add_option("--membrane-scale", o->membrane_scale,
