@@ -6,6 +6,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "odeint_integrator.hpp"
 #include "polygon_central_difference.hpp"
 
@@ -59,12 +61,25 @@ class Recorder {
         throw std::runtime_error("polygon chain: non-finite state at t = " + std::to_string(t));
     if (options_.energy_error_limit > 0 && out_.initial_energy_j > 0) {
       const double error = std::abs(balance_.back()) / out_.initial_energy_j;
-      if (!(error <= options_.energy_error_limit))
+      if (!(error <= options_.energy_error_limit)) {
+        // The buckets and the previous sample's balance tell a jump within one sample (a step
+        // past the stable bound, a contact landing deep) from a steady drift (a term the
+        // integrator does not conserve): what to change differs, so the message does not guess.
+        const double previous =
+            balance_.size() > 1 ? std::abs(balance_[balance_.size() - 2]) / out_.initial_energy_j : 0.0;
+        const auto j = [](double value) { return fmt::format("{:.4g}", value); };
         throw PolygonEnergyLimitError(
-            "polygon chain: energy limit at t = " + std::to_string(t) + " s: |balance| = " +
-                std::to_string(error) + " of the initial kinetic energy exceeds energy_error_limit " +
-                std::to_string(options_.energy_error_limit) + " (the integration diverged?)",
+            fmt::format("polygon chain: energy limit at t = {:.6g} s: |balance| = {:.4g} of the initial "
+                        "kinetic energy exceeds energy_error_limit {:.4g} (previous sample, t = {:.6g} s: "
+                        "{:.4g}); energies (J): initial kinetic {}, kinetic {}, elastic {}, contact {}, "
+                        "plastic {}, contact damping {}, damping {}, external {}",
+                        t, error, options_.energy_error_limit,
+                        h.time_s.size() > 1 ? h.time_s[h.time_s.size() - 2] : t, previous,
+                        j(out_.initial_energy_j), j(h.kinetic_j.back()), j(h.elastic_j.back()),
+                        j(h.contact_j.back()), j(h.plastic_j.back()), j(h.contact_damping_j.back()),
+                        j(h.damping_j.back()), j(h.external_j.back())),
             t, error);
+      }
     }
     if (out_.arrest_time_s < 0 && t > 0 && v <= 0.0) out_.arrest_time_s = t;
     if (options_.stop_at_arrest && out_.arrest_time_s >= 0 &&

@@ -68,7 +68,8 @@ TEST(PolygonExplicitDampers, PowerBoundKeepsTheDampedStep) {
 
 // A step above the bound (a fixed step of 2.5× the explicit dampers' stable step) diverges;
 // the run stops at the first sample whose balance exceeds the limit with the named error,
-// which says where and by how much — not a NaN or a 1e10 balance in the output. The same
+// which says where and by how much, with the previous sample's balance and the energy
+// buckets — not a NaN or a 1e10 balance in the output. The same
 // run at a fixed step inside the bound passes the limit.
 TEST(PolygonExplicitDampers, RunawayBalanceStopsWithTheEnergyLimitError) {
   const auto in = test30_like();
@@ -86,6 +87,10 @@ TEST(PolygonExplicitDampers, RunawayBalanceStopsWithTheEnergyLimitError) {
   } catch (const PolygonEnergyLimitError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("energy_error_limit"), std::string::npos) << what;
+    // The diagnosis carries what tells a jump from a drift: the previous sample and the buckets.
+    EXPECT_NE(what.find("previous sample"), std::string::npos) << what;
+    EXPECT_NE(what.find("kinetic"), std::string::npos) << what;
+    EXPECT_EQ(what.find("nan"), std::string::npos) << what;
     EXPECT_LE(e.time_s(), o.end_time_s);
     EXPECT_GT(e.relative_error(), o.energy_error_limit);
   }
