@@ -224,7 +224,12 @@ class DynamicRun {
       try {
         d.step(end);
       } catch (const SolveFailure& e) {
-        throw SolveFailure(e.what() + contact_context(d));
+        // The driver knows only the model it integrates: in a half model its joules are half
+        // the chain's, while the context below and every output are the whole chain's.
+        const std::string half = sym_ != 1.0 ? fmt::format(" (the driver's energies are the half model's: × {} for the "
+                                                           "whole chain, as below and in the outputs)", sym_)
+                                             : std::string();
+        throw SolveFailure(e.what() + half + contact_context(d));
       }
       if constexpr (kExplicit) {
         // The stable step drops when a contact closes (its penalty stiffness joins ω_max):

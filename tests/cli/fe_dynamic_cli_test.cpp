@@ -108,6 +108,8 @@ TEST(FeDynamicCli, EnergyLimitStopExitsOneAndLeavesNoResults) {
                            " -o " + out.string());
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("energy"), std::string::npos) << r.output;
+  // A half model: the driver's joules are said to be the half model's, the context's the chain's.
+  EXPECT_NE(r.output.find("the driver's energies are the half model's"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find(".out.partial"), std::string::npos) << e.path();
