@@ -591,7 +591,10 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   std::vector<Eigen::Index> free_;
 };
 
-constexpr double kIdaRestartStepFraction = 0.1;
+constexpr double kIdaRestartStepFraction = 0.003;
+constexpr double kIdaStepGrowthThreshold = 1.7;
+constexpr double kIdaStepHoldFloor = 0.9;
+constexpr double kIdaStepGrowthMax = 100.0;
 constexpr double kOdeintEventTimeTolerance = 1e-13;
 
 }  // namespace
@@ -602,11 +605,21 @@ Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions
   Level3Result res;
   res.wrap = level3_detail::level3_wrap_for(in);
   res.theta_f = res.wrap.theta_f;
-  // IDA restarts from a tenth of its last step: 30–60 events a run, each otherwise starting
-  // from IDA's own ~1e-11 s (hybrid_system.hpp); 1243 → 1106 steps at 27.7 m/s (0.01: 1159,
-  // 0.3: 1105 with more rejections, 1: 1137). Order 1 after a restart still needs ~1e-8 s.
+  // IDA restarts from a fraction of its last step: 30–60 events a run, each otherwise starting
+  // from IDA's own ~1e-11 s (hybrid_system.hpp); h36's tenth: 1243 → 1106 steps at 27.7 m/s.
+  // And IDA's step control (HybridOptions::ida_step_growth_*): after each restart IDA climbs
+  // back from order 1 in doublings, granted only when the error would allow 2× and held for
+  // k + 1 steps (0.5 of the steps at 45 m/s were that climb: 12–20 a restart). From 0.003 ×
+  // the last step, a step grows by any factor >= 1.7 the error allows (up to 100×) and is cut
+  // only when the error asks for < 0.9: 788 / 1291 / 1063 → 637 / 1059 / 903 steps at 27.7 /
+  // 45 / 50 m/s, IDA instructions −10 to −13 %, the same events and crush within the bar
+  // against Odeint at rtol 1e-12 (README "Hinge models", h48; the three values were chosen
+  // together on these three speeds, ±3 % around them).
   HybridOptions opt = options;
   if (!opt.ida_restart_step_fraction) opt.ida_restart_step_fraction = kIdaRestartStepFraction;
+  if (!opt.ida_step_growth_threshold) opt.ida_step_growth_threshold = kIdaStepGrowthThreshold;
+  if (!opt.ida_step_hold_floor) opt.ida_step_hold_floor = kIdaStepHoldFloor;
+  if (!opt.ida_step_growth_max) opt.ida_step_growth_max = kIdaStepGrowthMax;
   // Odeint's events to 1e-13 s instead of 64 ulp of t (~1e-18 s): the roots were half of its
   // instructions, most in ~45 bisections per fired root; 1e-13 s at 50 m/s is 5e-12 m of crush.
   if (!opt.odeint_event_time_tolerance) opt.odeint_event_time_tolerance = kOdeintEventTimeTolerance;

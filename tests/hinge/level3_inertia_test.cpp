@@ -130,7 +130,7 @@ TEST(Level3Inertia, IdaAndOdeintAgree) {
   EXPECT_TRUE(ida.rings[0].wrap_started);  // ring 1 reaches the wrap onset first at 50 m/s
 }
 
-// Speed without changing results (issue 7 item 2): the chain restarts IDA from a tenth of its
+// Speed without changing results (issue 7 item 2): the chain restarts IDA from a fraction of its
 // last step and gives IDA its Jacobian in the columns f depends on. Against IDA's own first
 // step (fraction 0) and, through the same model, Odeint: final crush per ring to 1e-6 d, the
 // same modes, energy to 1e-6, and fewer steps (counted, not timed). A fraction outside
