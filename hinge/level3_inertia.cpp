@@ -76,6 +76,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
       m0_ += in.ring_mass_kg * w * w.transpose();
     }
     mm_ = m0_;
+    mm_mu_.assign(static_cast<std::size_t>(n_), 0.0);
     b_ = Eigen::VectorXd::Zero(n);
     vref_ = in.impactor_velocity_m_s;
   }
@@ -107,6 +108,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     ~EventScope() {
       chain.in_event_ = false;
       for (auto& e : chain.load_cache_) e.valid = false;
+      chain.residual_y_.clear();  // f depends on the motions and mechanisms an event changes
     }
     Level3InertialChain& chain;
   };
@@ -147,14 +149,20 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     dmu = (Jp / (dc * dc) + 2.0 * J * s / (dc * dc * c)) / dc;
     c0 = {crush, mu, dmu};
   }
+  // 𝓜 differs from the constant part m0_ only on the diagonal, by μ_i: a diagonal entry is
+  // rewritten (m0_ + μ, as ever) only when its μ_i has changed since the last call — between
+  // events only a crushing Uniform ring's does.
   void assemble(const double* y) {
-    mm_ = m0_;
     b_.setZero();
     for (int i = 0; i < n_; ++i) {
       double mu, dmu;
       own_mass(y, i, mu, dmu);
       const double v = y[vel(i)];
-      mm_(i, i) += mu;
+      auto& held = mm_mu_[static_cast<std::size_t>(i)];
+      if (mu != held) {
+        mm_(i, i) = m0_(i, i) + mu;
+        held = mu;
+      }
       b_(i) -= 0.5 * dmu * v * v;
     }
   }
@@ -197,7 +205,11 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   }
   void residual(double t, const double* y, const double* yp, double* r) override {
     rhs(t, y, r);
-    for (std::size_t k = 0; k < size(); ++k) r[k] = yp[k] - r[k];
+    const std::size_t n = size();
+    residual_y_.assign(y, y + n);
+    residual_f_.assign(r, r + n);
+    residual_t_ = t;
+    for (std::size_t k = 0; k < n; ++k) r[k] = yp[k] - r[k];
   }
 
   // IDA's Jacobian ∂F/∂y + cj ∂F/∂y′ = cj I − ∂f/∂y. Difference quotients as IDA's own, but
@@ -213,7 +225,10 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     f0_.resize(n);
     f1_.resize(n);
     yd_.assign(y, y + n);
-    rhs(t, y, f0_.data());
+    // IDA sets its Newton matrix up at the state whose residual it has just evaluated: f(y)
+    // from that call when the state (and the mode, EventScope) is the same to the bit.
+    if (!residual_y_.empty() && t == residual_t_ && std::equal(y, y + n, residual_y_.begin())) f0_ = residual_f_;
+    else rhs(t, y, f0_.data());
     auto column = [&](int c, double typical) {
       const auto k = static_cast<std::size_t>(c);
       const double inc = std::sqrt(std::numeric_limits<double>::epsilon()) *
@@ -584,8 +599,11 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   mutable std::vector<SlotLoad> load_cache_;  // ring_load() per mechanism slot
   bool in_event_ = false;
   std::vector<double> f0_, f1_, yd_;  // jacobian(): f(y), f(y + inc e_k), the shifted state
+  std::vector<double> residual_y_, residual_f_;  // the last residual()'s state and f there
+  double residual_t_ = 0.0;
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m0_, mm_;
+  std::vector<double> mm_mu_;  // the μ_i in mm_'s diagonal (assemble())
   Eigen::VectorXd b_, r_, qdd_, lambda_;
   FreeMassSolve free_solve_;
   std::vector<Eigen::Index> free_;
