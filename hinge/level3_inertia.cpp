@@ -64,6 +64,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     mech_.assign(n_, 0);
     own_cache_.assign(static_cast<std::size_t>(n_), OwnMass{});
     load_cache_.assign(static_cast<std::size_t>(m_), SlotLoad{});
+    margin_cache_.assign(static_cast<std::size_t>(m_), SlotMargin{});
     for (int i = 0; i < n_; ++i) {
       mech_[i] = kM * i + kU;
       strength_.push_back(1.0 + tie_break * i);
@@ -103,11 +104,22 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     c = {true, crush, strength_[j / kM] * load(y, j)};
     return c.load;
   }
+  // The same for a slot's travel left (margin(): its ring's three mechanism crushes, and for
+  // the bottom mechanism ψ through asin and sin), read by every root evaluation.
+  double ring_margin(const double* y, int j) const {
+    if (in_event_) return margin(y, j);
+    auto& c = margin_cache_[static_cast<std::size_t>(j)];
+    const double* q = y + state(kM * (j / kM));  // the ring's uniform, wrap and bottom / E–C–B crushes
+    if (c.valid && c.crush[0] == q[0] && c.crush[1] == q[1] && c.crush[2] == q[2]) return c.margin;
+    c = {true, {q[0], q[1], q[2]}, margin(y, j)};
+    return c.margin;
+  }
   struct EventScope {
     explicit EventScope(Level3InertialChain& c) : chain(c) { chain.in_event_ = true; }
     ~EventScope() {
       chain.in_event_ = false;
       for (auto& e : chain.load_cache_) e.valid = false;
+      for (auto& e : chain.margin_cache_) e.valid = false;
       chain.residual_y_.clear();  // f depends on the motions and mechanisms an event changes
     }
     Level3InertialChain& chain;
@@ -264,8 +276,8 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
       const double reference = crushing ? ring_load(y, m) : lambda_(i);
       for (int k = 0; k < kM; ++k) {
         const int j = kM * i + k;
-        if (crushing && j == m) g[j] = margin(y, j) / d_;
-        else if (available(j) && margin(y, j) > 1e-9 * d_)
+        if (crushing && j == m) g[j] = ring_margin(y, j) / d_;
+        else if (available(j) && ring_margin(y, j) > 1e-9 * d_)
           g[j] = std::clamp((ring_load(y, j) - reference * (1.0 - switch_margin(j))) / p0_, -1e3, 1e3);
       }
       if (crushing) g[m_ + 2 * i] = y[vel(i)] / vref_;
@@ -597,6 +609,12 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     double crush = 0.0, load = 0.0;
   };
   mutable std::vector<SlotLoad> load_cache_;  // ring_load() per mechanism slot
+  struct SlotMargin {
+    bool valid = false;
+    double crush[3] = {0.0, 0.0, 0.0};
+    double margin = 0.0;
+  };
+  mutable std::vector<SlotMargin> margin_cache_;  // ring_margin() per mechanism slot
   bool in_event_ = false;
   std::vector<double> f0_, f1_, yd_;  // jacobian(): f(y), f(y + inc e_k), the shifted state
   std::vector<double> residual_y_, residual_f_;  // the last residual()'s state and f there
