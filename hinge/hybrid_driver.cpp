@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -44,6 +45,8 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   io.max_step = o.max_step;
   io.root_mask_tolerance = o.root_mask_tolerance;
   if (o.ida_eigen_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::EigenDense;
+  io.step_growth = {o.ida_step_growth_threshold.value_or(0.0), o.ida_step_hold_floor.value_or(0.0),
+                    o.ida_step_growth_max.value_or(0.0)};
   const bool algebraic = has_algebraic(system.differential_mask());
   io.suppress_algebraic_error_test = algebraic;
   const bool reduced = o.ida_reduced_state.value_or(false);
@@ -228,6 +231,16 @@ HybridOutcome run_hybrid(HybridSystem& system, double t0, std::vector<double>& y
   if (!(options.end_time > t0)) throw std::invalid_argument("run_hybrid: end time must follow the start");
   if (const double f = options.ida_restart_step_fraction.value_or(0.0); !(f >= 0.0 && f <= 1.0))
     throw std::invalid_argument(fmt::format("run_hybrid: ida_restart_step_fraction = {} (need 0 (off) to 1)", f));
+  // IDA's step-size changes (HybridOptions::ida_step_growth_*): IDA would quietly put its own
+  // value in place of one out of range.
+  const double growth = options.ida_step_growth_threshold.value_or(2.0);
+  if (!(growth >= 1.0 && std::isfinite(growth)))
+    throw std::invalid_argument(fmt::format("run_hybrid: ida_step_growth_threshold = {} (need finite, >= 1)", growth));
+  if (const double f = options.ida_step_hold_floor.value_or(1.0); !(f > 0.0 && f <= 1.0))
+    throw std::invalid_argument(fmt::format("run_hybrid: ida_step_hold_floor = {} (need 0 < floor <= 1)", f));
+  if (const double g = options.ida_step_growth_max.value_or(std::max(2.0, growth)); !(g >= growth && std::isfinite(g)))
+    throw std::invalid_argument(
+        fmt::format("run_hybrid: ida_step_growth_max = {} (need finite, >= the growth threshold {})", g, growth));
   if (const double w = options.odeint_event_time_tolerance.value_or(0.0); !(w >= 0.0 && std::isfinite(w)))
     throw std::invalid_argument(fmt::format("run_hybrid: odeint_event_time_tolerance = {} s (need finite, >= 0)", w));
   return options.integrator == HybridIntegrator::Ida ? run_ida(system, t0, y, options, sample)

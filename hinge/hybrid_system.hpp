@@ -77,7 +77,7 @@ struct HybridOptions {
   // IDA's first step after an event: a fraction in (0, 1] of its last step before it (Odeint
   // always restarts from its last step); 0, IDA's own first step (0.5/‖y′‖ in its error
   // weights: ~1e-11 s at rtol 1e-8, then ~20 doublings back); unset, the model's choice (the
-  // driver: 0). For models with many events (Level 3 with ring inertia sets 0.1).
+  // driver: 0). For models with many events (Level 3 with ring inertia sets 0.003).
   std::optional<double> ida_restart_step_fraction;
   // Odeint's event bisection stops at this width (s); unset, the model's choice (the driver:
   // 64 ulp of t, ~45 halvings of a step, each evaluating every root function).
@@ -98,6 +98,17 @@ struct HybridOptions {
   // (IdaOptions::LinearSolver::EigenDense), for small live states. Unset, the model's choice
   // (the driver: off).
   std::optional<bool> ida_eigen_lu;
+  // IDA's step-size changes after a successful step (IdaOptions::step_growth; SUNDIALS 6.4's
+  // IDASetEtaFixedStepBounds / IDASetEtaMax). IDA keeps its step unless its error estimate
+  // allows at least doubling it (then it doubles, no more) or asks for a cut: after each
+  // restart it climbs back from order 1 in doublings held for k + 1 steps each. Unset, the
+  // model's choice (the driver: IDA's 2 / 1 / 2).
+  //   ida_step_growth_threshold  grow once the error allows this factor (IDA: 2; >= 1)
+  //   ida_step_hold_floor        cut only when the error asks for less than this (IDA: 1; in (0, 1])
+  //   ida_step_growth_max        the largest growth of one step (IDA: 2; >= the threshold)
+  std::optional<double> ida_step_growth_threshold;
+  std::optional<double> ida_step_hold_floor;
+  std::optional<double> ida_step_growth_max;
   double max_step = 0.0;         // 0: unbounded
   long max_events = 100000;
   long max_steps_per_segment = 500000;

@@ -190,6 +190,21 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
           "IDASStolerances");
   m.check(IDASetMaxNumSteps(m.ida, options.max_steps), "IDASetMaxNumSteps");
   if (options.max_step > 0.0) m.check(IDASetMaxStep(m.ida, options.max_step), "IDASetMaxStep");
+  // Optional inputs survive IDAReInit: set once for every restart.
+  if (const auto& g = options.step_growth; g.growth_threshold != 0.0 || g.hold_floor != 0.0 || g.growth_max != 0.0) {
+    // IDA's own values for those left at 0 (IDASetEtaFixedStepBounds would take a floor of 0
+    // as "never cut", and replace a value out of range by its own without a word).
+    const double threshold = g.growth_threshold != 0.0 ? g.growth_threshold : 2.0;
+    const double floor = g.hold_floor != 0.0 ? g.hold_floor : 1.0;
+    const double most = g.growth_max != 0.0 ? g.growth_max : std::max(2.0, threshold);
+    if (!(threshold >= 1.0 && std::isfinite(threshold)) || !(floor > 0.0 && floor <= 1.0) ||
+        !(most >= threshold && std::isfinite(most)))
+      throw std::invalid_argument(fmt::format(
+          "IdaSolver: step growth threshold {}, hold floor {}, growth max {} (need threshold >= 1, 0 < floor <= 1, max >= threshold)",
+          threshold, floor, most));
+    m.check(IDASetEtaFixedStepBounds(m.ida, floor, threshold), "IDASetEtaFixedStepBounds");
+    m.check(IDASetEtaMax(m.ida, most), "IDASetEtaMax");
+  }
 
   if (options.linear_solver == IdaOptions::LinearSolver::Band) {
     m.matrix = check_alloc(

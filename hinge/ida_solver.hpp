@@ -41,6 +41,15 @@ struct IdaOptions {
   // A masked root function (see IdaSolver::reinit) is reported to IDA as exactly zero until
   // its magnitude exceeds this value; models scale their root functions to O(1).
   double root_mask_tolerance = 1e-9;
+  // Step-size selection after a successful step (IDASetEtaFixedStepBounds, IDASetEtaMax): IDA
+  // computes the ratio η the error estimate allows; η >= growth_threshold: the step grows by
+  // min(η, growth_max); η <= hold_floor: it is cut; in between it is kept. 0: IDA's own
+  // (2, 1, 2). hinge/hybrid_system.hpp, HybridOptions::ida_step_growth_*.
+  struct StepGrowth {
+    double growth_threshold = 0.0;
+    double hold_floor = 0.0;
+    double growth_max = 0.0;
+  } step_growth;
 };
 
 struct IdaStatistics {

@@ -64,6 +64,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     mech_.assign(n_, 0);
     own_cache_.assign(static_cast<std::size_t>(n_), OwnMass{});
     load_cache_.assign(static_cast<std::size_t>(m_), SlotLoad{});
+    margin_cache_.assign(static_cast<std::size_t>(m_), SlotMargin{});
     for (int i = 0; i < n_; ++i) {
       mech_[i] = kM * i + kU;
       strength_.push_back(1.0 + tie_break * i);
@@ -76,6 +77,7 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
       m0_ += in.ring_mass_kg * w * w.transpose();
     }
     mm_ = m0_;
+    mm_mu_.assign(static_cast<std::size_t>(n_), 0.0);
     b_ = Eigen::VectorXd::Zero(n);
     vref_ = in.impactor_velocity_m_s;
   }
@@ -102,11 +104,23 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     c = {true, crush, strength_[j / kM] * load(y, j)};
     return c.load;
   }
+  // The same for a slot's travel left (margin(): its ring's three mechanism crushes, and for
+  // the bottom mechanism ψ through asin and sin), read by every root evaluation.
+  double ring_margin(const double* y, int j) const {
+    if (in_event_) return margin(y, j);
+    auto& c = margin_cache_[static_cast<std::size_t>(j)];
+    const double* q = y + state(kM * (j / kM));  // the ring's uniform, wrap and bottom / E–C–B crushes
+    if (c.valid && c.crush[0] == q[0] && c.crush[1] == q[1] && c.crush[2] == q[2]) return c.margin;
+    c = {true, {q[0], q[1], q[2]}, margin(y, j)};
+    return c.margin;
+  }
   struct EventScope {
     explicit EventScope(Level3InertialChain& c) : chain(c) { chain.in_event_ = true; }
     ~EventScope() {
       chain.in_event_ = false;
       for (auto& e : chain.load_cache_) e.valid = false;
+      for (auto& e : chain.margin_cache_) e.valid = false;
+      chain.residual_y_.clear();  // f depends on the motions and mechanisms an event changes
     }
     Level3InertialChain& chain;
   };
@@ -147,14 +161,20 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     dmu = (Jp / (dc * dc) + 2.0 * J * s / (dc * dc * c)) / dc;
     c0 = {crush, mu, dmu};
   }
+  // 𝓜 differs from the constant part m0_ only on the diagonal, by μ_i: a diagonal entry is
+  // rewritten (m0_ + μ, as ever) only when its μ_i has changed since the last call — between
+  // events only a crushing Uniform ring's does.
   void assemble(const double* y) {
-    mm_ = m0_;
     b_.setZero();
     for (int i = 0; i < n_; ++i) {
       double mu, dmu;
       own_mass(y, i, mu, dmu);
       const double v = y[vel(i)];
-      mm_(i, i) += mu;
+      auto& held = mm_mu_[static_cast<std::size_t>(i)];
+      if (mu != held) {
+        mm_(i, i) = m0_(i, i) + mu;
+        held = mu;
+      }
       b_(i) -= 0.5 * dmu * v * v;
     }
   }
@@ -197,7 +217,11 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
   }
   void residual(double t, const double* y, const double* yp, double* r) override {
     rhs(t, y, r);
-    for (std::size_t k = 0; k < size(); ++k) r[k] = yp[k] - r[k];
+    const std::size_t n = size();
+    residual_y_.assign(y, y + n);
+    residual_f_.assign(r, r + n);
+    residual_t_ = t;
+    for (std::size_t k = 0; k < n; ++k) r[k] = yp[k] - r[k];
   }
 
   // IDA's Jacobian ∂F/∂y + cj ∂F/∂y′ = cj I − ∂f/∂y. Difference quotients as IDA's own, but
@@ -213,7 +237,10 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     f0_.resize(n);
     f1_.resize(n);
     yd_.assign(y, y + n);
-    rhs(t, y, f0_.data());
+    // IDA sets its Newton matrix up at the state whose residual it has just evaluated: f(y)
+    // from that call when the state (and the mode, EventScope) is the same to the bit.
+    if (!residual_y_.empty() && t == residual_t_ && std::equal(y, y + n, residual_y_.begin())) f0_ = residual_f_;
+    else rhs(t, y, f0_.data());
     auto column = [&](int c, double typical) {
       const auto k = static_cast<std::size_t>(c);
       const double inc = std::sqrt(std::numeric_limits<double>::epsilon()) *
@@ -249,8 +276,8 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
       const double reference = crushing ? ring_load(y, m) : lambda_(i);
       for (int k = 0; k < kM; ++k) {
         const int j = kM * i + k;
-        if (crushing && j == m) g[j] = margin(y, j) / d_;
-        else if (available(j) && margin(y, j) > 1e-9 * d_)
+        if (crushing && j == m) g[j] = ring_margin(y, j) / d_;
+        else if (available(j) && ring_margin(y, j) > 1e-9 * d_)
           g[j] = std::clamp((ring_load(y, j) - reference * (1.0 - switch_margin(j))) / p0_, -1e3, 1e3);
       }
       if (crushing) g[m_ + 2 * i] = y[vel(i)] / vref_;
@@ -582,16 +609,28 @@ class Level3InertialChain final : public level3_detail::Level3Chain {
     double crush = 0.0, load = 0.0;
   };
   mutable std::vector<SlotLoad> load_cache_;  // ring_load() per mechanism slot
+  struct SlotMargin {
+    bool valid = false;
+    double crush[3] = {0.0, 0.0, 0.0};
+    double margin = 0.0;
+  };
+  mutable std::vector<SlotMargin> margin_cache_;  // ring_margin() per mechanism slot
   bool in_event_ = false;
   std::vector<double> f0_, f1_, yd_;  // jacobian(): f(y), f(y + inc e_k), the shifted state
+  std::vector<double> residual_y_, residual_f_;  // the last residual()'s state and f there
+  double residual_t_ = 0.0;
   double vref_ = 1.0, impact_loss_ = 0.0, arrest_time_ = -1.0;
   Eigen::MatrixXd m0_, mm_;
+  std::vector<double> mm_mu_;  // the μ_i in mm_'s diagonal (assemble())
   Eigen::VectorXd b_, r_, qdd_, lambda_;
   FreeMassSolve free_solve_;
   std::vector<Eigen::Index> free_;
 };
 
-constexpr double kIdaRestartStepFraction = 0.1;
+constexpr double kIdaRestartStepFraction = 0.003;
+constexpr double kIdaStepGrowthThreshold = 1.7;
+constexpr double kIdaStepHoldFloor = 0.9;
+constexpr double kIdaStepGrowthMax = 100.0;
 constexpr double kOdeintEventTimeTolerance = 1e-13;
 
 }  // namespace
@@ -602,11 +641,21 @@ Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions
   Level3Result res;
   res.wrap = level3_detail::level3_wrap_for(in);
   res.theta_f = res.wrap.theta_f;
-  // IDA restarts from a tenth of its last step: 30–60 events a run, each otherwise starting
-  // from IDA's own ~1e-11 s (hybrid_system.hpp); 1243 → 1106 steps at 27.7 m/s (0.01: 1159,
-  // 0.3: 1105 with more rejections, 1: 1137). Order 1 after a restart still needs ~1e-8 s.
+  // IDA restarts from a fraction of its last step: 30–60 events a run, each otherwise starting
+  // from IDA's own ~1e-11 s (hybrid_system.hpp); h36's tenth: 1243 → 1106 steps at 27.7 m/s.
+  // And IDA's step control (HybridOptions::ida_step_growth_*): after each restart IDA climbs
+  // back from order 1 in doublings, granted only when the error would allow 2× and held for
+  // k + 1 steps (0.5 of the steps at 45 m/s were that climb: 12–20 a restart). From 0.003 ×
+  // the last step, a step grows by any factor >= 1.7 the error allows (up to 100×) and is cut
+  // only when the error asks for < 0.9: 788 / 1291 / 1063 → 637 / 1059 / 903 steps at 27.7 /
+  // 45 / 50 m/s, IDA instructions −10 to −13 %, the same events and crush within the bar
+  // against Odeint at rtol 1e-12 (README "Hinge models", h48; the three values were chosen
+  // together on these three speeds, ±3 % around them).
   HybridOptions opt = options;
   if (!opt.ida_restart_step_fraction) opt.ida_restart_step_fraction = kIdaRestartStepFraction;
+  if (!opt.ida_step_growth_threshold) opt.ida_step_growth_threshold = kIdaStepGrowthThreshold;
+  if (!opt.ida_step_hold_floor) opt.ida_step_hold_floor = kIdaStepHoldFloor;
+  if (!opt.ida_step_growth_max) opt.ida_step_growth_max = kIdaStepGrowthMax;
   // Odeint's events to 1e-13 s instead of 64 ulp of t (~1e-18 s): the roots were half of its
   // instructions, most in ~45 bisections per fired root; 1e-13 s at 50 m/s is 5e-12 m of crush.
   if (!opt.odeint_event_time_tolerance) opt.odeint_event_time_tolerance = kOdeintEventTimeTolerance;

@@ -56,13 +56,22 @@ void FreeMassSolve::solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
                           const std::vector<Eigen::Index>& free, Eigen::VectorXd& x) {
   const auto nf = static_cast<Eigen::Index>(free.size());
   if (nf == 0) return;
-  mf_.resize(nf, nf);
+  // The factor is kept while 𝓜_ff is the same to the bit: between events the inertial Level 3
+  // chain's 𝓜 changes only through the Uniform mode's μ(δ) of a crushing ring (constant
+  // through the wrap, bottom and E–C–B modes and in the velocity columns of its Jacobian).
+  bool same = factored_ && mf_.rows() == nf;
+  if (!same) mf_.resize(nf, nf);
   rf_.resize(nf);
   for (Eigen::Index i = 0; i < nf; ++i) {
     rf_(i) = r(free[i]);
-    for (Eigen::Index j = 0; j < nf; ++j) mf_(i, j) = mass(free[i], free[j]);
+    for (Eigen::Index j = 0; j < nf; ++j) {
+      const double m = mass(free[i], free[j]);
+      same = same && mf_(i, j) == m;
+      mf_(i, j) = m;
+    }
   }
-  llt_.compute(mf_);
+  if (!same) llt_.compute(mf_);
+  factored_ = true;
   rf_ = llt_.solve(rf_);
   for (Eigen::Index i = 0; i < nf; ++i) x(free[i]) = rf_(i);
 }

