@@ -257,6 +257,7 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
   out.extra["max_peeq_per_ring"] = r.max_peeq_per_ring;
   out.extra["top_height_ratio"] = top_height;
   out.extra["bottom_height_ratio"] = bottom_height;
+  if (!hht) out.extra["explicit_safety"] = s.fe.explicit_safety;  // the scene's or --safety
   out.extra["step_limited_by"] = st.step_limited_by;
   out.extra["min_step_s"] = st.min_step_s;
   out.extra["max_step_s"] = st.max_step_s;

@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "compare/cli/commands.hpp"
 #include "compare/deck_scene.hpp"
@@ -51,6 +52,7 @@ struct FeOptions {
   std::string step_bound;   // explicit: "element" | "assembled" (the scene default; compare/scene.hpp)
   double mass_scaling_dt = -1;  // ≥ 0: overrides fe.mass_scaling_dt (explicit; 0 = off)
   double penalty_step_fraction = -1;  // ≥ 0: overrides fe.contact_penalty_step_fraction (0 = off)
+  std::optional<double> safety;  // overrides fe.explicit_safety (as bench-fe-dynamic --safety)
 };
 
 const char* integration_name(fe::Integration i) {
@@ -120,6 +122,13 @@ Scene scene_with_overrides(const FeOptions& o) {
       throw std::invalid_argument(fmt::format(
           "ringcrush fe: --penalty-step-fraction {} must be 0 (off) or lie in (0, 0.5]", o.penalty_step_fraction));
     s.fe.contact_penalty_step_fraction = o.penalty_step_fraction;
+  }
+  if (o.safety) {
+    if (s.analysis.type == AnalysisType::Static)
+      throw std::invalid_argument("ringcrush fe: --safety applies to dynamic scenes (explicit solver) only");
+    if (!(*o.safety > 0 && *o.safety <= 1))
+      throw std::invalid_argument(fmt::format("ringcrush fe: --safety {} must lie in (0, 1]", *o.safety));
+    s.fe.explicit_safety = *o.safety;
   }
   if (o.end_time_s > 0) {
     if (s.analysis.type == AnalysisType::Static)
@@ -200,6 +209,8 @@ void add_fe_command(CLI::App& app) {
   cmd->add_option("--step-bound", o->step_bound,
                   "Explicit: stable-step omega_max from the element bound or the assembled power-iteration estimate")
       ->check(CLI::IsMember({"element", "assembled"}));
+  cmd->add_option("--safety", o->safety,
+                  "Explicit: step = safety x 2/omega_max, in (0, 1]; overrides fe.explicit_safety (default 0.8)");
   cmd->add_option("--mass-scaling-dt", o->mass_scaling_dt,
                   "Explicit: fixed mass scaling to this target step (s; 0 off), overrides fe.mass_scaling_dt "
                   "(changes the physics: the added mass is reported)")

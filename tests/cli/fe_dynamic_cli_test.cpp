@@ -86,6 +86,34 @@ TEST(FeDynamicCli, OverridesReachTheRun) {
   EXPECT_EQ(j["mesh"]["elements"], 3 * 10);
 }
 
+// --safety reaches the explicit step (Δt = safety · 2/ω_max: half the safety, about twice the
+// steps) and summary.json; outside (0, 1] it is a usage error, and a static scene refuses it
+// (HHT ignores it, as it ignores the scene key).
+TEST(FeDynamicCli, SafetyReachesTheExplicitStep) {
+  const fs::path dir = scratch("safety");
+  const std::string scene = cheap_scene(dir, {{"end_time_s = 0\\.0004", "end_time_s = 0.0001"}}).string();
+  long steps[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const fs::path out = dir / (k == 0 ? "a" : "b");
+    const auto r = ringcrush("fe " + scene + (k == 0 ? " --safety 0.8" : " --safety 0.4") + " -q -o " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto j = nlohmann::json::parse(read_text(out / "summary.json"));
+    EXPECT_DOUBLE_EQ(j["explicit_safety"].get<double>(), k == 0 ? 0.8 : 0.4);
+    steps[k] = j["steps"].get<long>();
+  }
+  EXPECT_GT(static_cast<double>(steps[1]) / static_cast<double>(steps[0]), 1.8) << steps[0] << " " << steps[1];
+  EXPECT_LT(static_cast<double>(steps[1]) / static_cast<double>(steps[0]), 2.2) << steps[0] << " " << steps[1];
+  for (const char* bad : {"--safety 0", "--safety 1.5", "--safety -0.2", "--safety nan"}) {
+    const auto r = ringcrush("fe " + scene + " " + bad + " -q -o " + (dir / "bad").string());
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--safety"), std::string::npos) << bad << ": " << r.output;
+  }
+  const auto stat = ringcrush("fe " + std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/thesis_static.toml --safety 0.5 -o " +
+                              (dir / "bad").string());
+  EXPECT_EQ(stat.status, 2) << stat.output;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
 TEST(FeDynamicCli, RefusedScenesExitTwo) {
   const fs::path dir = scratch("refused");
   const auto friction = ringcrush("fe " + cheap_scene(dir, {{"\\[fe\\]", "[fe]\nfriction_coefficient = 0.1"}}).string() +
