@@ -59,6 +59,10 @@ struct Level2Settings {
   // central_difference: Kelvin–Voigt ring dampers by the trapezoidal rule (a banded solve per
   // ring, the step of the undamped stiffness) or explicit (hinge/polygon_central_difference.hpp).
   bool central_difference_implicit_dampers = true;
+  // central_difference: the membrane bars implicit, out of the step bound (CentralDifference-
+  // Options::implicit_membrane; needs the implicit dampers). The scene's [hinge]
+  // level2_implicit_membrane sets it, `bench-hinge2 --membrane implicit|explicit` overrides.
+  bool central_difference_implicit_membrane = false;
   // Diagnostic: the step bound's breakdown at every output sample (PolygonRunOptions::
   // step_breakdown; `bench-hinge2 --step-breakdown`).
   bool step_breakdown = false;
