@@ -68,18 +68,23 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   if (options.implicit_membrane) filter_initial_acceleration();
 }
 
-// The first kick's u = h a_0 filtered as every later one, (μ + h C + h² K_m) u = h μ a_0, with
-// h = ½ × the first step's bound (an `advance` target may shorten that step: O(Δt³) in u);
-// what the filter takes off, μ (a_0 − u/h), is the first kick's implicit force.
+// The first kick is Newmark's first step: the membrane at the midpoint x_0 + h v_{½}, i.e.
+// (μ + h C + h² K_m) u = h μ a_0 − h² K_m v_0 for u = v_{½} − v_0 (a_0 holding f − C v_0), with
+// h = ½ × the first step's bound (an `advance` target may shorten that step: O(Δt³) in u).
+// Without the −h² K_m v_0 term an initial velocity in a membrane mode past 2/Δt would enter
+// v_{½} unfiltered and start that mode at (ωΔt/2)× its amplitude (the energy ×(ωΔt/2)²: ×25 at
+// 10× the explicit step, tests/hinge/polygon_implicit_membrane_test.cpp). What the filter takes
+// off, μ (a_0 − u/h), is the first kick's implicit force.
 void PolygonCentralDifference::filter_initial_acceleration() {
   const double h = 0.5 * dt_stable_;
   stiff_half_.assign(y_.size(), 0.0);
   stiff_end_.assign(y_.size(), 0.0);
   correction_.assign(y_.size(), 0.0);
   correction_next_.assign(y_.size(), 0.0);
+  chain_.membrane_stiffness_product(y_.data(), y_.data(), stiff_end_.data());  // K_m v_0
   std::vector<double>& u = stiff_half_;  // scratch: the solve's v rows
   for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) u[i] = h * a_[i];
+    for (std::size_t i = o; i < o + 2; ++i) u[i] = h * a_[i] - h * h * stiff_end_[i] / chain_.mass_row(i);
   chain_.ring_damper_membrane_step(y_.data(), h, u.data(), stiff_end_.data());
   for (std::size_t o = 2; o < nodes_end_; o += 6)
     for (std::size_t i = o; i < o + 2; ++i) {
