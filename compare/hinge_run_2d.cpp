@@ -27,12 +27,17 @@ hinge::PolygonJoint joint_of(JointType j) {
 
 Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   Level2Settings s;
-  const double fallback = integrator == HingeIntegrator::CentralDifference ? kCentralDifferenceStiffTermScale : 1.0;
-  const double penalty = scene.hinge.level2_penalty_stiffness_scale.value_or(fallback);
-  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(fallback);
+  const bool cd = integrator == HingeIntegrator::CentralDifference;
+  // The central difference: the implicit membrane unscaled with the penalties × 1/16 unless the
+  // scene turns it off (then the 1/4 scales); IDA and Odeint: the unscaled model.
+  s.central_difference_implicit_membrane = scene.hinge.level2_implicit_membrane.value_or(cd);
+  const bool implicit = cd && s.central_difference_implicit_membrane;
+  const double membrane_fallback = cd && !implicit ? kCentralDifferenceStiffTermScale : 1.0;
+  const double penalty_fallback = !cd ? 1.0 : implicit ? kImplicitMembranePenaltyScale : kCentralDifferenceStiffTermScale;
+  const double penalty = scene.hinge.level2_penalty_stiffness_scale.value_or(penalty_fallback);
+  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(membrane_fallback);
   s.contact_stiffness_scale *= penalty;
   s.tie_stiffness_scale *= penalty;
-  s.central_difference_implicit_membrane = scene.hinge.level2_implicit_membrane.value_or(false);
   return s;
 }
 

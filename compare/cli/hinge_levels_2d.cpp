@@ -109,6 +109,9 @@ void bench(const BenchOptions& o) {
   if (o.dampers != "implicit" && o.dampers != "explicit")
     throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
   settings.central_difference_implicit_dampers = o.dampers == "implicit";
+  // Explicit dampers without --membrane: the explicit membrane (the default's implicit one
+  // needs the implicit dampers), at the scales the scene resolved to.
+  if (!o.membrane && o.dampers == "explicit") settings.central_difference_implicit_membrane = false;
   if (o.membrane) {
     if (*o.membrane != "implicit" && *o.membrane != "explicit")
       throw std::invalid_argument("--membrane must be implicit or explicit, not \"" + *o.membrane + "\"");
@@ -207,7 +210,8 @@ void add_bench_command(CLI::App& app) {
                   "level2_penalty_stiffness_scale)");
   cmd->add_option("--membrane", o->membrane,
                   "central_difference: membrane bars implicit (out of the step bound; needs implicit dampers) | "
-                  "explicit (default: the scene's level2_implicit_membrane, else explicit)");
+                  "explicit (default: the scene's level2_implicit_membrane, else implicit; explicit with --dampers "
+                  "explicit)");
   cmd->add_flag("--step-breakdown", o->step_breakdown,
                "at every output sample: the stable-step bound with each stiffness term left out, and the "
                "power-iteration 2/omega_max (diagnostic)");

@@ -377,10 +377,11 @@ integrator = "central_difference"
     EXPECT_NE(what.find("level2_implicit_membrane"), std::string::npos) << what;
     EXPECT_NE(what.find("true or false"), std::string::npos) << what;
   }
-  const Scene on = parse_scene(scene + "level2_implicit_membrane = true\n", "on.toml");
-  EXPECT_TRUE(level2_settings(on, HingeIntegrator::CentralDifference).central_difference_implicit_membrane);
-  const Scene off = parse_scene(scene, "off.toml");
-  EXPECT_FALSE(off.hinge.level2_implicit_membrane.has_value());
+  const Scene off = parse_scene(scene + "level2_implicit_membrane = false\n", "off.toml");
   EXPECT_FALSE(level2_settings(off, HingeIntegrator::CentralDifference).central_difference_implicit_membrane);
+  const Scene unset = parse_scene(scene, "unset.toml");  // the central difference's default: on
+  EXPECT_FALSE(unset.hinge.level2_implicit_membrane.has_value());
+  EXPECT_TRUE(level2_settings(unset, HingeIntegrator::CentralDifference).central_difference_implicit_membrane);
+  EXPECT_FALSE(level2_settings(unset, HingeIntegrator::Ida).central_difference_implicit_membrane);
 }
 
