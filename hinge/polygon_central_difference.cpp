@@ -81,6 +81,9 @@ void PolygonCentralDifference::filter_initial_acceleration() {
   stiff_end_.assign(y_.size(), 0.0);
   correction_.assign(y_.size(), 0.0);
   correction_next_.assign(y_.size(), 0.0);
+  inverse_mass_.assign(y_.size(), 0.0);
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) inverse_mass_[i] = 1.0 / chain_.mass_row(i);
   chain_.membrane_stiffness_product(y_.data(), y_.data(), stiff_end_.data());  // K_m v_0
   std::vector<double>& u = stiff_half_;  // scratch: the solve's v rows
   for (std::size_t o = 2; o < nodes_end_; o += 6)
@@ -128,10 +131,10 @@ void PolygonCentralDifference::membrane_step(double h) {
   double* y = y_.data();
   chain_.membrane_stiffness_product(y, v_half_.data(), stiff_half_.data());
   for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) y[i] += h * h * stiff_half_[i] / chain_.mass_row(i);
+    for (std::size_t i = o; i < o + 2; ++i) y[i] += h * h * stiff_half_[i] * inverse_mass_[i];
   // d on exit: (C + h K_m) v_{n+1}.
   chain_.ring_damper_membrane_step(y, h, y, damper_next_.data());
-  chain_.membrane_stiffness_product(y, y, stiff_end_.data());
+  chain_.membrane_stiffness_product_again(y, stiff_end_.data());  // the positions are y's still
   double work = 0.0, correction_work = 0.0;
   for (std::size_t o = 2; o < nodes_end_; o += 6)
     for (std::size_t i = o; i < o + 2; ++i) {

@@ -58,9 +58,12 @@
 // Kelvin–Voigt accumulator: exactly its share of the kinetic-energy change. The correction's
 // part is the scheme's numerical work, reported (CentralDifferenceStatistics::
 // membrane_correction_work_j); what remains of the balance is the leapfrog's own telescoping
-// term, now ½Δt f·u/2 with the filtered u — never larger than the explicit leapfrog's
-// (Δt²/8μ)|f|² at the same step. At t0 the first kick's u is filtered alike with the first
-// step's bound.
+// term (the kicks' work against the potential's change), now (Δt/4) f·u with the filtered u —
+// never larger than the explicit leapfrog's (Δt²/8μ)|f|² at the same step. The first kick is
+// Newmark's first step, the membrane at x_0 + h v_{½} (filter_initial_acceleration).
+//   What this does not cover: a contact that closes during a step set by the hinges is as stiff
+// as the membrane at penalty scale 1, and the leapfrog's margin is then too thin (Test 30 free
+// diverges at safety 0.8, README): the implicit membrane pays with the penalties at 1/16.
 #pragma once
 
 #include <limits>
@@ -145,7 +148,7 @@ class PolygonCentralDifference {
   std::vector<double> damper_, damper_next_, v_start_, v_half_;
   // Implicit membrane: K_m v_{n+½}, K_m v_{n+1}, and the correction h K_m u at the step's
   // start and end.
-  std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_;
+  std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_, inverse_mass_;
   std::size_t nodes_end_ = 0;  // the node rows: 6 per node from row 0
   std::vector<std::size_t> velocity_rows_, position_rows_;  // the free bodies' pairs x′ = v
   double dt_stable_ = 0.0;

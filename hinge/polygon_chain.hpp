@@ -279,7 +279,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // (−e, e) — the bar dampers' pattern with k_m for c_b —, in the half model ½ EᵀK_full E
   // (bars 0…N/2 − 1 once, the axis nodes' x rows 0). The geometric term (N/ℓ)(I − e eᵀ) is
   // left out.
-  void membrane_stiffness_product(const double* y, const double* v, double* out) const;
+  void membrane_stiffness_product(const double* y, const double* v, double* out);
+  // The same with the bar directions of the last membrane_stiffness_product call (the same
+  // positions: the driver's second product of a step), without their square roots.
+  void membrane_stiffness_product_again(const double* v, double* out) const;
   // As ring_damper_step with C + h K_m(x) for C: on exit (μ + h C + h² K_m) v = μ v* and
   // d = (C + h K_m) v. h > 0.
   void ring_damper_membrane_step(const double* y, double h, double* v, double* d);
@@ -462,6 +465,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // adds h k_m to every bar's coefficient in the damper matrix.
   bool implicit_membrane_ = false;
   double membrane_h_ = 0.0;
+  std::vector<double> membrane_e_;  // e of every bar of the last membrane_stiffness_product
   double bar_matrix_coefficient() const { return membrane_h_ > 0.0 ? c_bar_ + membrane_h_ * k_m_ : c_bar_; }
   std::vector<int> kv_first_, kv_start_;
   std::vector<double> kv_c_, kv_factor_, kv_b_;

@@ -21,23 +21,38 @@ namespace ringcrush::hinge {
 // takes bars 0…N/2 − 1, which join independent nodes only, once each — the fold of a bar and
 // its mirror image that assemble_half_band makes for the bar dampers —, and clears the axis
 // nodes' x rows (held on the symmetry plane); the full ring all N bars.
-void PolygonChain::membrane_stiffness_product(const double* y, const double* v, double* out) const {
+void PolygonChain::membrane_stiffness_product(const double* y, const double* v, double* out) {
+  const int bars = half_ ? n_ind_ - 1 : n_full_;
+  membrane_e_.resize(2 * static_cast<std::size_t>(bars * n_rings_));
+  for (int r = 0; r < n_rings_; ++r) {
+    double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
+    for (int k = 0; k < bars; ++k) {
+      const std::size_t a = node_offset(r, k), b = node_offset(r, (k + 1) % n_ind_);
+      const double bx = y[b] - y[a], by = y[b + 1] - y[a + 1];
+      const double inv = 1.0 / std::sqrt(bx * bx + by * by);
+      e[2 * k] = bx * inv;
+      e[2 * k + 1] = by * inv;
+    }
+  }
+  membrane_stiffness_product_again(v, out);
+}
+
+void PolygonChain::membrane_stiffness_product_again(const double* v, double* out) const {
   const int bars = half_ ? n_ind_ - 1 : n_full_;
   for (int r = 0; r < n_rings_; ++r) {
+    const double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
     for (int j = 0; j < n_ind_; ++j) {
       const std::size_t o = node_offset(r, j) + 2;
       out[o] = out[o + 1] = 0.0;
     }
     for (int k = 0; k < bars; ++k) {
-      const std::size_t a = node_offset(r, k), b = node_offset(r, (k + 1) % n_ind_);
-      const double bx = y[b] - y[a], by = y[b + 1] - y[a + 1];
-      const double inv = 1.0 / std::sqrt(bx * bx + by * by);
-      const double ex = bx * inv, ey = by * inv;
-      const double s = k_m_ * (ex * (v[b + 2] - v[a + 2]) + ey * (v[b + 3] - v[a + 3]));
-      out[a + 2] -= s * ex;
-      out[a + 3] -= s * ey;
-      out[b + 2] += s * ex;
-      out[b + 3] += s * ey;
+      const std::size_t a = node_offset(r, k) + 2, b = node_offset(r, (k + 1) % n_ind_) + 2;
+      const double ex = e[2 * k], ey = e[2 * k + 1];
+      const double s = k_m_ * (ex * (v[b] - v[a]) + ey * (v[b + 1] - v[a + 1]));
+      out[a] -= s * ex;
+      out[a + 1] -= s * ey;
+      out[b] += s * ex;
+      out[b + 1] += s * ey;
     }
     if (half_) {
       out[node_offset(r, 0) + 2] = 0.0;

@@ -116,6 +116,13 @@ TEST(PolygonImplicitMembrane, ProductIsTheMembraneTangentAndFitsTheBand) {
     std::vector<double> k_stiff(y.size(), 0.0), k_soft(y.size(), 0.0);
     stiff.membrane_stiffness_product(y.data(), v.data(), k_stiff.data());
     soft.membrane_stiffness_product(y.data(), v.data(), k_soft.data());
+    // The second product at the same positions reuses the bar directions: the same bits.
+    std::vector<double> w2(y.size(), 0.0), k_full(y.size(), 0.0), k_again(y.size(), 0.0);
+    for (const auto r : rows) w2[r] = u(gen);
+    stiff.membrane_stiffness_product(y.data(), w2.data(), k_full.data());
+    stiff.membrane_stiffness_product(y.data(), v.data(), k_stiff.data());
+    stiff.membrane_stiffness_product_again(w2.data(), k_again.data());
+    for (const auto r : rows) EXPECT_EQ(k_again[r], k_full[r]);
     double norm = 0.0;
     for (const auto r : rows) norm = std::max(norm, std::abs(k_stiff[r] - k_soft[r]));
     ASSERT_GT(norm, 0.0);
