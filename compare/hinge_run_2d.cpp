@@ -27,9 +27,15 @@ hinge::PolygonJoint joint_of(JointType j) {
 
 Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   Level2Settings s;
-  const double fallback = integrator == HingeIntegrator::CentralDifference ? kCentralDifferenceStiffTermScale : 1.0;
-  const double penalty = scene.hinge.level2_penalty_stiffness_scale.value_or(fallback);
-  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(fallback);
+  const bool cd = integrator == HingeIntegrator::CentralDifference;
+  // The central difference: the implicit membrane unscaled with the penalties × 1/16 unless the
+  // scene turns it off (then the 1/4 scales); IDA and Odeint: the unscaled model.
+  s.central_difference_implicit_membrane = scene.hinge.level2_implicit_membrane.value_or(cd);
+  const bool implicit = cd && s.central_difference_implicit_membrane;
+  const double membrane_fallback = cd && !implicit ? kCentralDifferenceStiffTermScale : 1.0;
+  const double penalty_fallback = !cd ? 1.0 : implicit ? kImplicitMembranePenaltyScale : kCentralDifferenceStiffTermScale;
+  const double penalty = scene.hinge.level2_penalty_stiffness_scale.value_or(penalty_fallback);
+  s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(membrane_fallback);
   s.contact_stiffness_scale *= penalty;
   s.tie_stiffness_scale *= penalty;
   return s;
@@ -140,6 +146,7 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
                                                                   : hinge::PolygonIntegrator::CentralDifference;
   po.central_difference_safety = s.central_difference_safety;
   po.central_difference_implicit_dampers = s.central_difference_implicit_dampers;
+  po.central_difference_implicit_membrane = s.central_difference_implicit_membrane;
   po.step_breakdown = s.step_breakdown;
   po.central_difference_power_bound = s.central_difference_power_bound;
   po.central_difference_landing_depth_m = s.central_difference_landing_depth_ratio * scene.rings.wall_thickness_m;
@@ -314,6 +321,11 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     r.extra["central_difference"] = {{"min_step_s", raw.min_step_s},
                                      {"max_step_s", raw.max_step_s},
                                      {"min_flow_relaxation_s", raw.min_flow_relaxation_s}};
+  // Echoed only when on, so that the default run's summary keeps its bytes.
+  if (options.integrator == HingeIntegrator::CentralDifference && s.central_difference_implicit_membrane) {
+    r.extra["level2_settings"]["central_difference_implicit_membrane"] = true;
+    r.extra["central_difference"]["membrane_correction_work_j"] = raw.membrane_correction_work_j;
+  }
   if (run.relative_tolerance_used != options.relative_tolerance)
     r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",
                                   options.relative_tolerance, s.min_relative_tolerance,

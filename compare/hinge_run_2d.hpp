@@ -59,6 +59,11 @@ struct Level2Settings {
   // central_difference: Kelvin–Voigt ring dampers by the trapezoidal rule (a banded solve per
   // ring, the step of the undamped stiffness) or explicit (hinge/polygon_central_difference.hpp).
   bool central_difference_implicit_dampers = true;
+  // central_difference: the membrane bars implicit, out of the step bound (CentralDifference-
+  // Options::implicit_membrane; needs the implicit dampers). level2_settings turns it on for the
+  // central difference (kImplicitMembranePenaltyScale) unless the scene's [hinge]
+  // level2_implicit_membrane = false; `bench-hinge2 --membrane implicit|explicit` overrides.
+  bool central_difference_implicit_membrane = false;
   // Diagnostic: the step bound's breakdown at every output sample (PolygonRunOptions::
   // step_breakdown; `bench-hinge2 --step-breakdown`).
   bool step_breakdown = false;
@@ -99,6 +104,16 @@ struct Level2Settings {
 // balance ≤ 1e-3; the ring's elastic diametral stiffness falls by 0.43 % (THEORY §1.1's 2 %).
 // IDA gains no speed from it and its balance rises, so IDA and Odeint keep 1.
 inline constexpr double kCentralDifferenceStiffTermScale = 0.25;
+// The central difference's default since session 13 (helper h44): the membrane implicit at its
+// full EA (CentralDifferenceOptions::implicit_membrane), so that it leaves the step bound, and
+// the penalties (contact, ties) × 1/16 — the hinges and contacts then set the step. Measured on
+// the three Test 30 scenes and welded at 15 and 50 m/s (README "Hinge models", h44): 37–41 %
+// fewer steps than the 1/4 scales (Test 30: 11 913 / 10 954 / 10 926 against 18 830 / 17 514 /
+// 17 982), crush per ring within 0.006 D of the unscaled explicit model (0.002 at 50 m/s, where
+// the membrane at 1/16 misses by 0.019), wrap flags and alternation unchanged, balance ≤ 6.4e-5.
+// The penalties at 1 or 1/4 with the implicit membrane do not hold (README). A scene's
+// [hinge] level2_implicit_membrane = false restores the 1/4 scales with the explicit membrane.
+inline constexpr double kImplicitMembranePenaltyScale = 0.0625;
 Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator);
 
 hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& settings = {});

@@ -425,6 +425,7 @@ Scene parse_scene(const std::string& text, const std::string& file) {
       *value = r.number(key, 1.0);
       require(**value > 0 && **value <= 1, r, key, fmt::format("{} must lie in (0, 1] (1: the unscaled model)", **value));
     }
+    if (r.has("level2_implicit_membrane")) h.level2_implicit_membrane = r.boolean("level2_implicit_membrane", false);
     h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
         "level3_hinge_f",
         {{"least_onset_load", HingeSettings::Level3HingeF::LeastOnsetLoad},

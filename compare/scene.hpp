@@ -146,6 +146,11 @@ struct HingeSettings {
   // Unset: the integrator's default (level2_settings: 1/4 for the central difference, 1 else).
   std::optional<double> level2_membrane_stiffness_scale;
   std::optional<double> level2_penalty_stiffness_scale;
+  // The central difference's membrane bars implicit (hinge/polygon_central_difference.hpp,
+  // CentralDifferenceOptions::implicit_membrane): they leave the step bound. Unset: on for the
+  // central difference (compare/hinge_run_2d.hpp kImplicitMembranePenaltyScale). IDA and Odeint
+  // ignore it.
+  std::optional<bool> level2_implicit_membrane;
   // Level 3 hinge F of the wrap (hinge/level3_mechanism.hpp): fixed where the wrap starts at
   // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
   enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;

@@ -19,6 +19,10 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   if (!(options.fixed_step_s >= 0.0 && std::isfinite(options.fixed_step_s)))
     throw std::invalid_argument("PolygonCentralDifference: fixed_step_s must be ≥ 0 and finite, got " +
                                 std::to_string(options.fixed_step_s));
+  if (options.implicit_membrane && !options.implicit_ring_dampers)
+    throw std::invalid_argument(
+        "PolygonCentralDifference: implicit_membrane needs implicit_ring_dampers (the membrane joins the "
+        "dampers' banded solve)");
   if (y_.size() != chain.size())
     throw std::invalid_argument("PolygonCentralDifference: state size " + std::to_string(y_.size()) +
                                 " is not the chain's " + std::to_string(chain.size()));
@@ -35,6 +39,7 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   a_.resize(y_.size());
   a_next_.resize(y_.size());
   chain_.set_implicit_ring_dampers(options.implicit_ring_dampers);
+  chain_.set_implicit_membrane(options.implicit_membrane);
   chain_.set_contact_landing(options.contact_landing_depth, options.contact_landing_speed);
   // dt = 0: no flow, but the chain notes the hinge moments the first step's work starts from.
   double no_work = 0.0;
@@ -60,6 +65,37 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
     spectrum_.emplace(chain);
   }
   update_stable_step();
+  if (options.implicit_membrane) filter_initial_acceleration();
+}
+
+// The first kick is Newmark's first step: the membrane at the midpoint x_0 + h v_{½}, i.e.
+// (μ + h C + h² K_m) u = h μ a_0 − h² K_m v_0 for u = v_{½} − v_0 (a_0 holding f − C v_0), with
+// h = ½ × the first step's bound (an `advance` target may shorten that step: O(Δt³) in u).
+// Without the −h² K_m v_0 term an initial velocity in a membrane mode past 2/Δt would enter
+// v_{½} unfiltered and start that mode at (ωΔt/2)× its amplitude (the energy ×(ωΔt/2)²: ×25 at
+// 10× the explicit step, tests/hinge/polygon_implicit_membrane_test.cpp). What the filter takes
+// off, μ (a_0 − u/h), is the first kick's implicit force.
+void PolygonCentralDifference::filter_initial_acceleration() {
+  const double h = 0.5 * dt_stable_;
+  stiff_half_.assign(y_.size(), 0.0);
+  stiff_end_.assign(y_.size(), 0.0);
+  correction_.assign(y_.size(), 0.0);
+  correction_next_.assign(y_.size(), 0.0);
+  inverse_mass_.assign(y_.size(), 0.0);
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) inverse_mass_[i] = 1.0 / chain_.mass_row(i);
+  chain_.membrane_stiffness_product(y_.data(), y_.data(), stiff_end_.data());  // K_m v_0
+  std::vector<double>& u = stiff_half_;  // scratch: the solve's v rows
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) u[i] = h * a_[i] - h * h * stiff_end_[i] / chain_.mass_row(i);
+  chain_.ring_damper_membrane_step(y_.data(), h, u.data(), stiff_end_.data());
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) {
+      const double filtered = u[i] / h;
+      correction_[i] = chain_.mass_row(i) * (a_[i] - filtered);
+      damper_[i] += correction_[i];
+      a_[i] = filtered;
+    }
 }
 
 void PolygonCentralDifference::update_stable_step() {
@@ -85,6 +121,35 @@ void PolygonCentralDifference::update_stable_step() {
     ++stats_.landing_steps;
   }
   if (options_.fixed_step_s > 0.0) dt_stable_ = options_.fixed_step_s;
+}
+
+// The second half-kick with the membrane implicit (polygon_central_difference.hpp): the node
+// rows hold v* and v_half_ v_{n+½}; solves (μ + h C + h² K_m) v = μ v* + h² K_m v_{n+½}, forms
+// the implicit force d = C v + h K_m u and books its work and the correction's.
+void PolygonCentralDifference::membrane_step(double h) {
+  const std::size_t acc = chain_.accumulator_offset();
+  double* y = y_.data();
+  chain_.membrane_stiffness_product(y, v_half_.data(), stiff_half_.data());
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) y[i] += h * h * stiff_half_[i] * inverse_mass_[i];
+  // d on exit: (C + h K_m) v_{n+1}.
+  chain_.ring_damper_membrane_step(y, h, y, damper_next_.data());
+  chain_.membrane_stiffness_product_again(y, stiff_end_.data());  // the positions are y's still
+  double work = 0.0, correction_work = 0.0;
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) {
+      correction_next_[i] = h * (stiff_end_[i] - stiff_half_[i]);
+      damper_next_[i] -= h * stiff_half_[i];
+      a_next_[i] = (y[i] - v_half_[i]) / h;
+      const double start = v_start_[i] + v_half_[i], end = v_half_[i] + y[i];
+      work += damper_[i] * start + damper_next_[i] * end;
+      correction_work += correction_[i] * start + correction_next_[i] * end;
+    }
+  // ¼Δt = ½h.
+  y[acc + 2] += 0.5 * h * work;
+  stats_.membrane_correction_work_j += 0.5 * h * correction_work;
+  damper_.swap(damper_next_);
+  correction_.swap(correction_next_);
 }
 
 double PolygonCentralDifference::advance(double t_end) {
@@ -138,7 +203,9 @@ void PolygonCentralDifference::step(double dt) {
   }
   for (std::size_t i = 0; i < nb; ++i) y[velocity_rows_[i]] += 0.5 * dt * a_next[velocity_rows_[i]];
   for (std::size_t k = 1; k < 4; ++k) y[acc + k] += 0.5 * dt * a_next[acc + k];
-  if (implicit) {
+  if (implicit && options_.implicit_membrane) {
+    membrane_step(0.5 * dt);
+  } else if (implicit) {
     // The node rows now hold the explicit prediction v*; (μ + ½Δt C) v = μ v*, and the
     // acceleration of the second half-kick (the next step's first) is (v_{n+1} − v_{n+½})/(½Δt).
     chain_.ring_damper_step(y, 0.5 * dt, y, damper_next_.data());

@@ -30,6 +30,40 @@
 // of the damper forces in the two kicks, Δt/4 [d_n·(v_n + v_{n+½}) + d_{n+1}·(v_{n+½} + v_{n+1})]
 // with d = C v: exactly their share of the kinetic-energy change of the step, so the
 // balance closes as with the explicit dampers (to the leapfrog's O(Δt²) on the stiffness).
+//
+// Implicit membrane (CentralDifferenceOptions::implicit_membrane; implicit dampers only): the
+// membrane bars, k_m = EA/ℓ0 unscaled, are the stiffest ring term (README "Which term binds");
+// they leave the step bound. In the three-level form of the leapfrog, δ²x = x_{n+1} − 2x_n +
+// x_{n−1} = Δt (v_{n+½} − v_{n−½}), the scheme is
+//   (μ + ¼Δt² K_m(x_n)) δ²x = Δt² (f(x_n, …) − C v…),
+// f all forces (the membrane's exact, nonlinear; hinges, ties, contacts explicit as above),
+// K_m = Σ_bars k_m g gᵀ the membrane's material tangent at x_n (polygon_implicit_membrane.cpp;
+// the geometric (N/ℓ)(I − e eᵀ) left out). For a linear K = K_m + K_E this is
+//   μ δ²x + Δt² [K_E x_n + K_m (¼x_{n+1} + ½x_n + ¼x_{n−1})] = 0:
+// Newmark's trapezoidal rule (β = ¼, γ = ½) on the membrane, the central difference on the
+// rest — the implicit–explicit partition of Hughes & Liu (1978) in its linearised, one-solve
+// form. Stability: with A = μ + ¼Δt² K_m the recurrence is stable iff Δt² (K_m + K_E) ≤ 4A,
+// i.e. Δt² K_E ≤ 4μ — the explicit terms' limit ω_E Δt ≤ 2, whatever k_m (no commuting
+// assumed). The trapezoidal rule is non-dissipative in the linear case; a membrane mode above
+// 2/Δt is stepped with period elongation, not lost. Second order (the ¼Δt² K_m δ²x term is
+// O(Δt⁴) per step against Δt² f).
+//   In the driver's half-kicks, with h = ½Δt and u = v_{n+1} − v_{n+½} (= v_{n+½} − v_n of the
+// next step's first half-kick, the leapfrog's shared acceleration u/h):
+//   (μ + h C + h² K_m) u = h (f(x_{n+1}, v_{n+½}) − C v_{n+½}),
+// the damper solve with c_b + h k_m for each bar's coefficient (same band). It is posed for v:
+//   (μ + h C + h² K_m) v_{n+1} = μ v* + h² K_m v_{n+½},  v* = v_{n+½} + h f/μ,
+// and the two kicks' implicit force d = C v + h K_m u (the dampers and the membrane's
+// correction g = h K_m u, the force the explicit membrane would have added) is booked as the
+// dampers' alone are, ¼Δt [d_n·(v_n + v_{n+½}) + d_{n+1}·(v_{n+½} + v_{n+1})], into the
+// Kelvin–Voigt accumulator: exactly its share of the kinetic-energy change. The correction's
+// part is the scheme's numerical work, reported (CentralDifferenceStatistics::
+// membrane_correction_work_j); what remains of the balance is the leapfrog's own telescoping
+// term (the kicks' work against the potential's change), now (Δt/4) f·u with the filtered u —
+// never larger than the explicit leapfrog's (Δt²/8μ)|f|² at the same step. The first kick is
+// Newmark's first step, the membrane at x_0 + h v_{½} (filter_initial_acceleration).
+//   What this does not cover: a contact that closes during a step set by the hinges is as stiff
+// as the membrane at penalty scale 1, and the leapfrog's margin is then too thin (Test 30 free
+// diverges at safety 0.8, README): the implicit membrane pays with the penalties at 1/16.
 #pragma once
 
 #include <limits>
@@ -75,6 +109,9 @@ struct CentralDifferenceOptions {
   // targets exactly): step-convergence studies, and a step above the bound to show that the
   // divergence is caught (the run's energy limit, polygon_simulation.hpp). 0: the bound.
   double fixed_step_s = 0.0;
+  // true: the membrane bars implicit (above): they leave the step bound, the step is set by
+  // hinges, ties and contacts. Needs implicit_ring_dampers. Off by default.
+  bool implicit_membrane = false;
 };
 
 struct CentralDifferenceStatistics {
@@ -84,6 +121,9 @@ struct CentralDifferenceStatistics {
   double min_flow_relaxation_s = std::numeric_limits<double>::infinity();
   long power_refreshes = 0;  // power-iteration estimates made (power_iteration_bound)
   long landing_steps = 0;    // steps shortened by the contact landing
+  // implicit_membrane: the work of the membrane's implicit correction h K_m u in the kicks
+  // (modelled structure, J; > 0 dissipated), booked in the Kelvin–Voigt accumulator.
+  double membrane_correction_work_j = 0.0;
 };
 
 class PolygonCentralDifference {
@@ -106,12 +146,17 @@ class PolygonCentralDifference {
   std::vector<double> y_, a_, a_next_;
   // Implicit dampers: C v at the step's start and end, v_n and v_{n+½} on the node rows.
   std::vector<double> damper_, damper_next_, v_start_, v_half_;
+  // Implicit membrane: K_m v_{n+½}, K_m v_{n+1}, and the correction h K_m u at the step's
+  // start and end.
+  std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_, inverse_mass_;
   std::size_t nodes_end_ = 0;  // the node rows: 6 per node from row 0
   std::vector<std::size_t> velocity_rows_, position_rows_;  // the free bodies' pairs x′ = v
   double dt_stable_ = 0.0;
   CentralDifferenceStatistics stats_;
   // power_iteration_bound: the estimator, ρ, the bound at its last refresh and the steps since.
   void update_stable_step();
+  void filter_initial_acceleration();
+  void membrane_step(double h);
   std::optional<PolygonStiffnessSpectrum> spectrum_;
   double power_ratio_ = 1.0, power_reference_ = 0.0;
   long power_age_ = 0;

@@ -268,6 +268,25 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void ring_damper_step(const double* y, double h, double* v, double* d);
   double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
 
+  // Implicit membrane (polygon_implicit_membrane.cpp; CentralDifferenceOptions::
+  // implicit_membrane). While set, stable_step and stiffness_triplets leave the membrane bars
+  // out (the driver integrates them implicitly; φ keeps the membrane force), and the damper
+  // profile of the full model is laid out with the bars present whatever c_b.
+  void set_implicit_membrane(bool on) { implicit_membrane_ = on; }
+  bool implicit_membrane() const { return implicit_membrane_; }
+  // out = K_m(x) v on the node velocity rows (x from y, v state-length as in
+  // ring_damper_forces): the membrane's material tangent K_m = Σ_bars k_m g gᵀ, g = ∂ℓ/∂p =
+  // (−e, e) — the bar dampers' pattern with k_m for c_b —, in the half model ½ EᵀK_full E
+  // (bars 0…N/2 − 1 once, the axis nodes' x rows 0). The geometric term (N/ℓ)(I − e eᵀ) is
+  // left out.
+  void membrane_stiffness_product(const double* y, const double* v, double* out);
+  // The same with the bar directions of the last membrane_stiffness_product call (the same
+  // positions: the driver's second product of a step), without their square roots.
+  void membrane_stiffness_product_again(const double* v, double* out) const;
+  // As ring_damper_step with C + h K_m(x) for C: on exit (μ + h C + h² K_m) v = μ v* and
+  // d = (C + h K_m) v. h > 0.
+  void ring_damper_membrane_step(const double* y, double h, double* v, double* d);
+
   // Contact landing (polygon_contact_landing.cpp; CentralDifferenceOptions::
   // contact_landing_depth): while depth > 0, every evaluation notes, over the node–plate and
   // node–segment pairs that close faster than `min_speed`, the shortest time in which one of
@@ -442,6 +461,12 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // (skyline) lower triangle over its 2 n_ind velocity rows, row i spanning columns
   // kv_first_[i]…i from kv_start_[i]; kv_factor_ the Cholesky factor of μ + h C.
   bool implicit_dampers_ = false;
+  // Implicit membrane: the step's h while ring_damper_membrane_step runs (0 otherwise), which
+  // adds h k_m to every bar's coefficient in the damper matrix.
+  bool implicit_membrane_ = false;
+  double membrane_h_ = 0.0;
+  std::vector<double> membrane_e_;  // e of every bar of the last membrane_stiffness_product
+  double bar_matrix_coefficient() const { return membrane_h_ > 0.0 ? c_bar_ + membrane_h_ * k_m_ : c_bar_; }
   std::vector<int> kv_first_, kv_start_;
   std::vector<double> kv_c_, kv_factor_, kv_b_;
   template <class Sink>

@@ -75,14 +75,15 @@ void PolygonChain::for_each_damper_entry(Sink&& sink) const {
       }
     }
   };
+  const double c_bar = bar_matrix_coefficient();  // c_b, plus h k_m for the implicit membrane
   for (int k = 0; k < n_full_; ++k) {
     const int k1 = (k + 1) % n_full_;
     const double bx = px_[k1] - px_[k], by = py_[k1] - py_[k];
     const double l = std::sqrt(bx * bx + by * by);
-    if (c_bar_ > 0) {
+    if (c_bar > 0 || implicit_membrane_) {  // the implicit membrane's bars: laid out even at c_b = 0
       const int nodes[2] = {k, k1};
       const double g[2][2] = {{-bx / l, -by / l}, {bx / l, by / l}};
-      scatter(nodes, g, 2, c_bar_);
+      scatter(nodes, g, 2, c_bar);
     }
   }
   if (!(c_hinge_ > 0)) return;
@@ -250,7 +251,7 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
   const std::ptrdiff_t S = lane_count(n_rings_);  // band: ring r's C(i, i − q) at (6 i + q) S
   // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
   double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
-  half_band_elements(y + node_offset(ring, 0), n_ind_, c_bar_, c_hinge_, scratch);
+  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch);
   const double* E = scratch + kElementSize * kElementPad;
   for (int j = 0; j <= last; ++j) {
     // Node j's elements in the summation order and its local node in each, with those of

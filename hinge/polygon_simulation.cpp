@@ -169,6 +169,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     co.power_iteration_bound = options.central_difference_power_bound;
     co.contact_landing_depth = options.central_difference_landing_depth_m;
     co.fixed_step_s = options.central_difference_fixed_step_s;
+    co.implicit_membrane = options.central_difference_implicit_membrane;
     PolygonCentralDifference cd(chain, 0.0, y, co);
     march(cd);
     const auto& s = cd.statistics();
@@ -179,6 +180,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.min_flow_relaxation_s = s.min_flow_relaxation_s;
     out.power_refreshes = s.power_refreshes;
     out.landing_steps = s.landing_steps;
+    out.membrane_correction_work_j = chain.structure_factor() * s.membrane_correction_work_j;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

@@ -45,6 +45,7 @@ struct PolygonRunOptions {
   bool central_difference_power_bound = false;      // CentralDifferenceOptions::power_iteration_bound
   double central_difference_landing_depth_m = 0.0;  // CentralDifferenceOptions::contact_landing_depth
   double central_difference_fixed_step_s = 0.0;     // CentralDifferenceOptions::fixed_step_s
+  bool central_difference_implicit_membrane = false;  // CentralDifferenceOptions::implicit_membrane
   // > 0: the run stops with PolygonEnergyLimitError at the first output sample whose
   // |energy balance| / KE0 exceeds this (impact runs: a driven run starts with KE0 = 0 and is
   // not checked). The explicit central difference diverges past its stable step into a
@@ -93,6 +94,9 @@ struct PolygonRunOutput {
   // relaxation time met (CentralDifferenceStatistics); 0 for the other integrators.
   double min_step_s = 0.0, max_step_s = 0.0, min_flow_relaxation_s = 0.0;
   long power_refreshes = 0, landing_steps = 0;  // CentralDifferenceStatistics
+  // Central difference, implicit membrane: the work of the membrane's implicit correction
+  // (CentralDifferenceStatistics::membrane_correction_work_j), full structure, J; in damping_j.
+  double membrane_correction_work_j = 0.0;
   // Largest contact penetration (m) and membrane strain |ℓ/ℓ0 − 1| over the output samples
   // (PolygonChain::max_penetration_last, max_membrane_strain_last): what softened membrane
   // and penalty stiffness cost in geometry.

@@ -22,7 +22,8 @@
 namespace ringcrush::hinge {
 
 double PolygonChain::stable_step(unsigned terms) const {
-  const double k_membrane = (terms & kMembrane) ? 4.0 * k_m_ : 0.0;
+  // The implicit membrane (polygon_implicit_membrane.cpp) does not bound the step.
+  const double k_membrane = (terms & kMembrane) && !implicit_membrane_ ? 4.0 * k_m_ : 0.0;
   const double k_ring = k_membrane + ((terms & kHinges) ? 16.0 * k_theta_ / (l0_ * l0_) : 0.0);
   const bool contacts = (terms & kContacts) != 0;
   // Implicit ring dampers (trapezoidal in the driver, polygon_implicit_dampers.cpp) leave the

@@ -10,18 +10,24 @@ namespace ringcrush::hinge {
 // K = −∂φ/∂x of the force laws with the Kelvin–Voigt coefficients at zero: their entries in
 // the position columns (the turn of a bar's or hinge's damper direction, ∝ c ṽ) are not
 // stiffness, and the implicit dampers do not bound the step (polygon_central_difference.hpp).
+// With the implicit membrane (set_implicit_membrane) k_m is at zero as well: the driver
+// integrates the bars implicitly, so they do not bound the step either (their geometric term
+// (N/ℓ)(I − e eᵀ), ≤ k_m |ε| ≈ 1e-3 k_m, goes with them).
 void PolygonChain::stiffness_triplets(double t, const double* y, std::vector<Triplet>& out) {
-  const double c_bar = c_bar_, c_hinge = c_hinge_;
+  const double c_bar = c_bar_, c_hinge = c_hinge_, k_m = k_m_;
   c_bar_ = c_hinge_ = 0.0;
+  if (implicit_membrane_) k_m_ = 0.0;
   try {
     analytic_jacobian(t, 0.0, y, out);
   } catch (...) {
     c_bar_ = c_bar;
     c_hinge_ = c_hinge;
+    k_m_ = k_m;
     throw;
   }
   c_bar_ = c_bar;
   c_hinge_ = c_hinge;
+  k_m_ = k_m;
 }
 
 PolygonStiffnessSpectrum::PolygonStiffnessSpectrum(PolygonChain& chain) : chain_(chain) {

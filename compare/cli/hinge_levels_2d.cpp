@@ -7,6 +7,7 @@
 //   ringcrush bench-hinge2 data/scenes/test30_welded.toml --integrator central_difference [--safety 0.8]
 //       [--dampers implicit|explicit] [--step-breakdown]
 //       [--step-bound gershgorin|power] [--landing 0.002] [--membrane-scale 0.25] [--penalty-scale 0.25]
+//       [--membrane implicit|explicit]
 //
 // `hinge --level 2` writes summary.json, history.csv, the SVG plots, shapes.pvd +
 // frames/shape_NNNN.vtp (ring mean lines over time for ParaView, with the plastic rotation
@@ -61,6 +62,7 @@ struct BenchOptions {
   std::string step_bound = "power";
   std::optional<double> landing;
   std::optional<double> membrane_scale, penalty_scale;
+  std::optional<std::string> membrane;  // implicit | explicit; unset: the scene's
 };
 
 // Quantiles of the step-bound breakdown over the run's samples (stable_step_breakdown,
@@ -107,6 +109,16 @@ void bench(const BenchOptions& o) {
   if (o.dampers != "implicit" && o.dampers != "explicit")
     throw std::invalid_argument("--dampers must be implicit or explicit, not \"" + o.dampers + "\"");
   settings.central_difference_implicit_dampers = o.dampers == "implicit";
+  // Explicit dampers without --membrane: the explicit membrane (the default's implicit one
+  // needs the implicit dampers), at the scales the scene resolved to.
+  if (!o.membrane && o.dampers == "explicit") settings.central_difference_implicit_membrane = false;
+  if (o.membrane) {
+    if (*o.membrane != "implicit" && *o.membrane != "explicit")
+      throw std::invalid_argument("--membrane must be implicit or explicit, not \"" + *o.membrane + "\"");
+    settings.central_difference_implicit_membrane = *o.membrane == "implicit";
+  }
+  if (settings.central_difference_implicit_membrane && !settings.central_difference_implicit_dampers)
+    throw std::invalid_argument("--membrane implicit needs --dampers implicit (one banded solve for both)");
   settings.step_breakdown = o.step_breakdown;
   if (o.step_bound != "gershgorin" && o.step_bound != "power")
     throw std::invalid_argument("--step-bound must be gershgorin or power, not \"" + o.step_bound + "\"");
@@ -156,6 +168,10 @@ void bench(const BenchOptions& o) {
                last.raw.landing_steps, settings.central_difference_safety,
                last.raw.min_step_s, last.raw.max_step_s,
                median / static_cast<double>(std::max(1L, last.raw.steps)) * 1e6, last.raw.min_flow_relaxation_s);
+  if (opt.integrator == HingeIntegrator::CentralDifference && settings.central_difference_implicit_membrane)
+    fmt::print("implicit membrane: correction work {:.3g} J ({:.2e} of KE0; in the damping energy)\n",
+               last.raw.membrane_correction_work_j,
+               last.raw.membrane_correction_work_j / std::max(last.raw.initial_energy_j, 1e-300));
   print_step_breakdown(last.raw.step_breakdown);
   fmt::print("stiff terms: membrane x {:g}, contact x {:g}, ties x {:g}; over the samples max penetration "
              "{:.3g} t, max membrane strain {:.3g}\n",
@@ -192,6 +208,10 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--penalty-scale", o->penalty_scale,
                   "factor on the contact and tie penalty stiffness, in (0, 1] (default: the scene's "
                   "level2_penalty_stiffness_scale)");
+  cmd->add_option("--membrane", o->membrane,
+                  "central_difference: membrane bars implicit (out of the step bound; needs implicit dampers) | "
+                  "explicit (default: the scene's level2_implicit_membrane, else implicit; explicit with --dampers "
+                  "explicit)");
   cmd->add_flag("--step-breakdown", o->step_breakdown,
                "at every output sample: the stable-step bound with each stiffness term left out, and the "
                "power-iteration 2/omega_max (diagnostic)");

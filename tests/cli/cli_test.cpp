@@ -123,3 +123,15 @@ TEST(Cli, BenchHinge2StiffTermScalesOutOfRangeAreNamedErrors) {
       EXPECT_NE(r.output.find(std::string(flag) + " must lie in (0, 1]"), std::string::npos) << r.output;
     }
 }
+
+// `--membrane` takes implicit or explicit, and the implicit membrane needs the implicit dampers
+// (hinge/polygon_central_difference.hpp): named errors before any run.
+TEST(Cli, BenchHinge2MembraneFlagBadValuesAreNamedErrors) {
+  const std::string base = "bench-hinge2 " + scenes + "test30_welded.toml --repeat 1 --integrator central_difference ";
+  CommandRun r = ringcrush(base + "--membrane stiff");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--membrane must be implicit or explicit, not \"stiff\""), std::string::npos) << r.output;
+  r = ringcrush(base + "--membrane implicit --dampers explicit");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--membrane implicit needs --dampers implicit"), std::string::npos) << r.output;
+}

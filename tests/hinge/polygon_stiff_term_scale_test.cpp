@@ -153,7 +153,9 @@ TEST(PolygonStiffTermScale, SofterStiffTermsTakeFewerStepsAndKeepTheCrush) {
 
 // The scene's [hinge] keys reach the chain: the membrane scale as given, the penalty scale on
 // both the contact and the tie stiffness; without the keys the settings are the integrator's
-// defaults: the unscaled model for IDA and Odeint, 1/4 for the central difference.
+// defaults: the unscaled model for IDA and Odeint; for the central difference (since h44) the
+// implicit membrane unscaled with the penalties at 1/16, or with level2_implicit_membrane =
+// false the 1/4 scales of before.
 TEST(PolygonStiffTermScale, SceneKeysReachTheChainInput) {
   using namespace ringcrush::compare;
   Scene scene = load_scene(std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/test30_welded.toml");
@@ -163,10 +165,19 @@ TEST(PolygonStiffTermScale, SceneKeysReachTheChainInput) {
     EXPECT_EQ(plain.contact_stiffness_scale, Level2Settings{}.contact_stiffness_scale);
     EXPECT_EQ(plain.tie_stiffness_scale, Level2Settings{}.tie_stiffness_scale);
   }
-  const auto cd = polygon_input(scene, level2_settings(scene, HingeIntegrator::CentralDifference));
-  EXPECT_EQ(cd.membrane_stiffness_scale, kCentralDifferenceStiffTermScale);
-  EXPECT_EQ(cd.contact_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.contact_stiffness_scale);
-  EXPECT_EQ(cd.tie_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.tie_stiffness_scale);
+  for (auto integrator : {HingeIntegrator::Ida, HingeIntegrator::Odeint})
+    EXPECT_FALSE(level2_settings(scene, integrator).central_difference_implicit_membrane);
+  const auto cd_settings = level2_settings(scene, HingeIntegrator::CentralDifference);
+  EXPECT_TRUE(cd_settings.central_difference_implicit_membrane);
+  const auto cd = polygon_input(scene, cd_settings);
+  EXPECT_EQ(cd.membrane_stiffness_scale, 1.0);
+  EXPECT_EQ(cd.contact_stiffness_scale, kImplicitMembranePenaltyScale * Level2Settings{}.contact_stiffness_scale);
+  EXPECT_EQ(cd.tie_stiffness_scale, kImplicitMembranePenaltyScale * Level2Settings{}.tie_stiffness_scale);
+  scene.hinge.level2_implicit_membrane = false;  // the session-12 default
+  const auto cd_explicit = polygon_input(scene, level2_settings(scene, HingeIntegrator::CentralDifference));
+  EXPECT_EQ(cd_explicit.membrane_stiffness_scale, kCentralDifferenceStiffTermScale);
+  EXPECT_EQ(cd_explicit.contact_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.contact_stiffness_scale);
+  EXPECT_EQ(cd_explicit.tie_stiffness_scale, kCentralDifferenceStiffTermScale * Level2Settings{}.tie_stiffness_scale);
   scene.hinge.level2_membrane_stiffness_scale = 0.25;
   scene.hinge.level2_penalty_stiffness_scale = 0.0625;
   for (auto integrator : {HingeIntegrator::Ida, HingeIntegrator::CentralDifference}) {
