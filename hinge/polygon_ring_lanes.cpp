@@ -1,0 +1,266 @@
+// The central difference's ring pass (PolygonChain::ring_forces with the flow update,
+// polygon_ring_forces.cpp) over all rings at once. The rings have the same N and the same
+// lists of bars, hinges and nodes, so the per-ring loops run with the rings side by side: two
+// to an SSE2 vector (hinge/ring_lanes.hpp), value k of ring r at k·lanes + r. Every lane does
+// what the per-ring pass does for its ring, operation for operation (the bars' 1/ℓ, the hinge
+// rotation's series with atan2 beyond, polygon_hinge_angle.hpp, the moments, the node forces
+// gathered per node), so the forces, the flow update and its work are bitwise those of the
+// per-ring pass; what changes is the count of instructions: the bars' square roots and
+// divisions and the hinges' series are issued two rings at a time, and the index lists are
+// walked once for all rings instead of once per ring.
+//
+// The order-dependent sums stay in the per-ring order: the hinges that yield are noted per
+// ring and updated afterwards ring by ring, hinge by hinge (flow_hinge: θp, ā, the plastic
+// work; then their flow rows and plastic power), as the per-ring pass does them. The mirrored
+// hinges of the half model take their θp from the updated independent node, as there.
+//
+// Only where the pass has nothing to sum across rings besides those: the Kelvin–Voigt
+// dampers implicit (or none) and no mass damping (ring_lanes_apply); the explicit dampers and
+// the reference forms (IDA, Odeint, the Jacobians, recorded evaluations) keep the per-ring
+// pass.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_hinge_angle.hpp"
+#include "hinge/ring_lanes.hpp"
+
+namespace ringcrush::hinge {
+
+using lanes::Pair;
+using lanes::PairMask;
+
+namespace {
+
+constexpr int kWordBits = 64;
+
+int flow_words(int n_full) { return (n_full + kWordBits - 1) / kWordBits; }
+
+}  // namespace
+
+// An even lane count (a spare lane, repeating the last ring, when the ring count is odd);
+// every array holds the full ring's indices 0…N (node N is node 0 again, as in gather_ring).
+void PolygonChain::plan_ring_lanes() {
+  lanes_ = n_rings_ + n_rings_ % 2;
+  const auto values = static_cast<std::size_t>(n_full_ + 1) * static_cast<std::size_t>(lanes_);
+  for (auto* a : {&lane_px_, &lane_py_, &lane_tp_, &lane_ab_, &lane_ex_, &lane_ey_, &lane_gx_, &lane_gy_, &lane_n_,
+                  &lane_theta_, &lane_m_})
+    a->assign(values, 0.0);
+  lane_flowing_.assign(static_cast<std::size_t>(n_rings_ * flow_words(n_full_)), 0);
+  flow_moment_.assign(static_cast<std::size_t>(n_ind_) * static_cast<std::size_t>(lanes_), 0.0);
+}
+
+bool PolygonChain::ring_lanes_apply() const {
+  return ring_lanes_ && flow_y_ != nullptr && jac_ == nullptr && c_bar_ == 0.0 && c_hinge_ == 0.0 &&
+         !(in_.mass_damping_per_s > 0.0);
+}
+
+// Positions, θp and ā of the independent nodes into the lanes, the mirrored nodes (−x) and
+// node N after them; the node rows of φ that do not depend on the forces (x′ = v, the flow
+// rows zero until a hinge flows) on the way.
+void PolygonChain::ring_lanes_gather(const double* y, double* phi) {
+  const auto L = static_cast<std::size_t>(lanes_);
+  double* __restrict px = lane_px_.data();
+  double* __restrict py = lane_py_.data();
+  double* __restrict tp = lane_tp_.data();
+  double* __restrict ab = lane_ab_.data();
+  for (int r = 0; r < lanes_; ++r) {
+    const bool spare = r >= n_rings_;
+    const double* __restrict node = y + node_offset(spare ? n_rings_ - 1 : r, 0);
+    double* __restrict row = phi + node_offset(spare ? n_rings_ - 1 : r, 0);
+    for (int j = 0; j < n_ind_; ++j, node += 6, row += 6) {
+      const auto at = static_cast<std::size_t>(j) * L + static_cast<std::size_t>(r);
+      px[at] = node[0];
+      py[at] = node[1];
+      tp[at] = node[4];
+      ab[at] = node[5];
+      if (spare) continue;
+      row[0] = node[2];
+      row[1] = node[3];
+      row[4] = row[5] = 0.0;
+    }
+    if (!spare && half_) {  // the axis nodes' x stays 0
+      phi[node_offset(r, 0)] = 0.0;
+      phi[node_offset(r, n_ind_ - 1)] = 0.0;
+    }
+  }
+  for (const int k : ring_nodes_) {
+    if (!(half_ && k >= n_ind_)) continue;
+    const auto at = static_cast<std::size_t>(k) * L, from = static_cast<std::size_t>(n_full_ - k) * L;
+    for (std::size_t l = 0; l < L; ++l) {
+      px[at + l] = -px[from + l];
+      py[at + l] = py[from + l];
+    }
+  }
+  const auto end = static_cast<std::size_t>(n_full_) * L;
+  for (std::size_t l = 0; l < L; ++l) {
+    px[end + l] = px[l];
+    py[end + l] = py[l];
+  }
+}
+
+// Bars k ∈ bar_ranges_: e = w/ℓ, n/ℓ (the far end's ∂β/∂p) and the membrane force
+// N = k_m (ℓ − ℓ0), as ring_bars and central_difference_ring_laws.
+void PolygonChain::ring_lanes_bars() {
+  const auto L = static_cast<std::size_t>(lanes_);
+  const double* __restrict px = lane_px_.data();
+  const double* __restrict py = lane_py_.data();
+  double* __restrict ex = lane_ex_.data();
+  double* __restrict ey = lane_ey_.data();
+  double* __restrict gx = lane_gx_.data();
+  double* __restrict gy = lane_gy_.data();
+  double* __restrict n = lane_n_.data();
+  for (const auto& range : bar_ranges_)
+    for (auto at = static_cast<std::size_t>(range[0]) * L; at < static_cast<std::size_t>(range[1]) * L; at += 2) {
+      const Pair bx = lanes::load(px + at + L) - lanes::load(px + at);
+      const Pair by = lanes::load(py + at + L) - lanes::load(py + at);
+      const Pair l = lanes::sqrt(bx * bx + by * by), inv = 1.0 / l;
+      const Pair e_x = bx * inv, e_y = by * inv;
+      lanes::store(ex + at, e_x);
+      lanes::store(ey + at, e_y);
+      lanes::store(gx + at, -e_y * inv);
+      lanes::store(gy + at, e_x * inv);
+      lanes::store(n + at, k_m_ * (l - l0_));
+    }
+}
+
+// Hinge rotations θ (the series, atan2 on the lanes beyond it), and for the independent
+// hinges the trial moment k_θ(θ − θp) against the yield moment: the ones above it are noted
+// for ring_lanes_flow, the others keep their moment for the next step's work (flow_moment_).
+void PolygonChain::ring_lanes_hinges() {
+  const auto L = static_cast<std::size_t>(lanes_);
+  const double turn0 = 2.0 * std::numbers::pi / n_full_;
+  const double* __restrict ex = lane_ex_.data();
+  const double* __restrict ey = lane_ey_.data();
+  const double* __restrict tp = lane_tp_.data();
+  const double* __restrict ab = lane_ab_.data();
+  double* __restrict th = lane_theta_.data();
+  double* __restrict m = lane_m_.data();
+  double* __restrict fm = flow_moment_.data();
+  const Pair cap = {cap_, cap_};
+  const int words = flow_words(n_full_);
+  for (const int k : ring_hinges_) {
+    const int km = k == 0 ? n_full_ - 1 : k - 1;
+    const auto at0 = static_cast<std::size_t>(k) * L, prev0 = static_cast<std::size_t>(km) * L;
+    for (std::size_t p = 0; p < L; p += 2) {
+      const auto at = at0 + p, prev = prev0 + p;
+      const Pair exm = lanes::load(ex + prev), eym = lanes::load(ey + prev);
+      const Pair exk = lanes::load(ex + at), eyk = lanes::load(ey + at);
+      const Pair tx = exm * turn_cos_ + eym * turn_sin_;
+      const Pair ty = eym * turn_cos_ - exm * turn_sin_;
+      const Pair cross = exk * ty - eyk * tx, dot = exk * tx + eyk * ty;
+      const Pair w = cross / (1.0 + dot);
+      Pair theta = 2.0 * small_atan(w);
+      const PairMask series = (dot > 0.0) & (lanes::abs(w) <= kHingeSeriesLimit);
+      if (!(series[0] && series[1]))
+        for (int i = 0; i < 2; ++i)
+          if (!series[i]) theta[i] = hinge_rotation_atan2(cross[i], dot[i], turn0);
+      lanes::store(th + at, theta);
+      if (k >= n_ind_) continue;  // mirrored: its moment after the flow update (ring_lanes_flow)
+      const Pair M = k_theta_ * (theta - lanes::load(tp + at));
+      const Pair yield = lanes::min(M0_ + H_ * lanes::load(ab + at), cap);
+      const PairMask flowing = lanes::abs(M) > yield;
+      lanes::store(m + at, M);
+      lanes::store(fm + at, lanes::select(flowing, lanes::load(fm + at), M));
+      if (flowing[0] | flowing[1])
+        for (int i = 0; i < 2; ++i) {
+          const int r = static_cast<int>(p) + i;
+          if (flowing[i] && r < n_rings_)
+            lane_flowing_[static_cast<std::size_t>(r * words + k / kWordBits)] |= std::uint64_t{1} << (k % kWordBits);
+        }
+    }
+  }
+}
+
+// The yielding hinges ring by ring, hinge by hinge (the per-ring pass's order of the work and
+// power sums): the flow update, the moment after it, the flow rows and the plastic power; then
+// the mirrored hinges' moments with the updated θp of their images.
+void PolygonChain::ring_lanes_flow(double* phi, Tally& tally) {
+  const auto L = static_cast<std::size_t>(lanes_);
+  const int words = flow_words(n_full_);
+  for (int r = 0; r < n_rings_; ++r)
+    for (int word = 0; word < words; ++word) {
+      auto& bits = lane_flowing_[static_cast<std::size_t>(r * words + word)];
+      for (std::uint64_t b = bits; b != 0; b &= b - 1) {
+        const int k = word * kWordBits + std::countr_zero(b);
+        const auto at = static_cast<std::size_t>(k) * L + static_cast<std::size_t>(r);
+        const double M = flow_hinge(r, k, lane_theta_[at], lane_m_[at]);
+        lane_m_[at] = M;
+        const auto o = node_offset(r, k);
+        lane_tp_[at] = flow_y_[o + 4];
+        const Flow fl = flow(M, flow_y_[o + 5]);
+        if (fl.over > 0.0) {
+          phi[o + 4] = M > 0 ? fl.rate : -fl.rate;
+          phi[o + 5] = fl.rate;
+          tally.plastic_power += node_weight(k) * std::abs(M) * fl.rate;
+        }
+      }
+      bits = 0;
+    }
+  for (const int k : ring_hinges_) {
+    if (k < n_ind_) continue;
+    const auto at = static_cast<std::size_t>(k) * L, image = static_cast<std::size_t>(n_full_ - k) * L;
+    for (std::size_t p = 0; p < L; p += 2)
+      lanes::store(lane_m_.data() + at + p,
+                   k_theta_ * (lanes::load(lane_theta_.data() + at + p) - lanes::load(lane_tp_.data() + image + p)));
+  }
+}
+
+// Node j's force (M_{j−1} − M_j) g_{j−1} + (M_{j+1} − M_j) g_j + N_j e_j − N_{j−1} e_{j−1}, as
+// ring_node_forces, weighted as φ (the axis nodes ½, their x rows 0) into the rings' rows.
+void PolygonChain::ring_lanes_node_forces(double* phi) {
+  const auto L = static_cast<std::size_t>(lanes_);
+  const double* __restrict m = lane_m_.data();
+  const double* __restrict n = lane_n_.data();
+  const double* __restrict gx = lane_gx_.data();
+  const double* __restrict gy = lane_gy_.data();
+  const double* __restrict ex = lane_ex_.data();
+  const double* __restrict ey = lane_ey_.data();
+  const auto node = [&](int j, int jm, int jp, bool weighted) {
+    const auto a = static_cast<std::size_t>(j) * L, am = static_cast<std::size_t>(jm) * L,
+               ap = static_cast<std::size_t>(jp) * L;
+    const double w = node_weight(j);
+    const bool on_axis = half_ && weighted;
+    for (std::size_t p = 0; p < L; p += 2) {
+      const Pair mj = lanes::load(m + a + p);
+      const Pair before = lanes::load(m + am + p) - mj, after = lanes::load(m + ap + p) - mj;
+      const Pair fx = before * lanes::load(gx + am + p) + after * lanes::load(gx + a + p) +
+                      lanes::load(n + a + p) * lanes::load(ex + a + p) -
+                      lanes::load(n + am + p) * lanes::load(ex + am + p);
+      const Pair fy = before * lanes::load(gy + am + p) + after * lanes::load(gy + a + p) +
+                      lanes::load(n + a + p) * lanes::load(ey + a + p) -
+                      lanes::load(n + am + p) * lanes::load(ey + am + p);
+      for (int i = 0; i < 2; ++i) {
+        const int r = static_cast<int>(p) + i;
+        if (r >= n_rings_) break;
+        double* row = phi + node_offset(r, j);
+        if (weighted) {
+          row[2] = on_axis ? 0.0 : w * fx[i];
+          row[3] = w * fy[i];
+        } else {  // w = 1: w·f is f
+          row[2] = fx[i];
+          row[3] = fy[i];
+        }
+      }
+    }
+  };
+  // The ends wrap round the ring (and carry the axis weight in the half model).
+  const int last = n_ind_ - 1;
+  node(0, n_full_ - 1, 1, true);
+  for (int j = 1; j < last; ++j) node(j, j - 1, j + 1, false);
+  node(last, last - 1, last + 1 == n_full_ ? 0 : last + 1, true);
+}
+
+void PolygonChain::central_difference_ring_lanes(const double* y, double* phi, Tally& tally) {
+  ++ring_lane_passes_;
+  ring_lanes_gather(y, phi);
+  ring_lanes_bars();
+  ring_lanes_hinges();
+  ring_lanes_flow(phi, tally);
+  ring_lanes_node_forces(phi);
+}
+
+}  // namespace ringcrush::hinge
