@@ -425,6 +425,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // Of the last build: per pass p [start, end) at 2p, 2p + 1 into candidate_nodes_ (the slave nodes with a
   // non-empty list, ascending).
   std::vector<int> candidate_node_start_, candidate_nodes_;
+  std::vector<std::array<double, 4>> candidate_ring_box_;  // build_candidates' scratch
   void segment_box(int ring, int segment, const double* y);
   double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate

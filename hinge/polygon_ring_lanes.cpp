@@ -113,6 +113,7 @@ void PolygonChain::ring_lanes_bars() {
   double* __restrict gx = lane_gx_.data();
   double* __restrict gy = lane_gy_.data();
   double* __restrict n = lane_n_.data();
+  const double k_m = k_m_, l0 = l0_;
   for (const auto& range : bar_ranges_)
     for (auto at = static_cast<std::size_t>(range[0]) * L; at < static_cast<std::size_t>(range[1]) * L; at += 2) {
       const Pair bx = lanes::load(px + at + L) - lanes::load(px + at);
@@ -123,7 +124,7 @@ void PolygonChain::ring_lanes_bars() {
       lanes::store(ey + at, e_y);
       lanes::store(gx + at, -e_y * inv);
       lanes::store(gy + at, e_x * inv);
-      lanes::store(n + at, k_m_ * (l - l0_));
+      lanes::store(n + at, k_m * (l - l0));
     }
 }
 
@@ -140,8 +141,10 @@ void PolygonChain::ring_lanes_hinges() {
   double* __restrict th = lane_theta_.data();
   double* __restrict m = lane_m_.data();
   double* __restrict fm = flow_moment_.data();
+  // The members as locals: the lane stores (may_alias) would otherwise reload them.
   const Pair cap = {cap_, cap_};
-  const int words = flow_words(n_full_);
+  const double turn_cos = turn_cos_, turn_sin = turn_sin_, k_theta = k_theta_, M0 = M0_, H = H_;
+  const int words = flow_words(n_full_), n_ind = n_ind_, n_rings = n_rings_;
   for (const int k : ring_hinges_) {
     const int km = k == 0 ? n_full_ - 1 : k - 1;
     const auto at0 = static_cast<std::size_t>(k) * L, prev0 = static_cast<std::size_t>(km) * L;
@@ -149,8 +152,8 @@ void PolygonChain::ring_lanes_hinges() {
       const auto at = at0 + p, prev = prev0 + p;
       const Pair exm = lanes::load(ex + prev), eym = lanes::load(ey + prev);
       const Pair exk = lanes::load(ex + at), eyk = lanes::load(ey + at);
-      const Pair tx = exm * turn_cos_ + eym * turn_sin_;
-      const Pair ty = eym * turn_cos_ - exm * turn_sin_;
+      const Pair tx = exm * turn_cos + eym * turn_sin;
+      const Pair ty = eym * turn_cos - exm * turn_sin;
       const Pair cross = exk * ty - eyk * tx, dot = exk * tx + eyk * ty;
       const Pair w = cross / (1.0 + dot);
       Pair theta = 2.0 * small_atan(w);
@@ -159,16 +162,16 @@ void PolygonChain::ring_lanes_hinges() {
         for (int i = 0; i < 2; ++i)
           if (!series[i]) theta[i] = hinge_rotation_atan2(cross[i], dot[i], turn0);
       lanes::store(th + at, theta);
-      if (k >= n_ind_) continue;  // mirrored: its moment after the flow update (ring_lanes_flow)
-      const Pair M = k_theta_ * (theta - lanes::load(tp + at));
-      const Pair yield = lanes::min(M0_ + H_ * lanes::load(ab + at), cap);
+      if (k >= n_ind) continue;  // mirrored: its moment after the flow update (ring_lanes_flow)
+      const Pair M = k_theta * (theta - lanes::load(tp + at));
+      const Pair yield = lanes::min(M0 + H * lanes::load(ab + at), cap);
       const PairMask flowing = lanes::abs(M) > yield;
       lanes::store(m + at, M);
       lanes::store(fm + at, lanes::select(flowing, lanes::load(fm + at), M));
-      if (flowing[0] | flowing[1])
+      if (lanes::any(flowing))
         for (int i = 0; i < 2; ++i) {
           const int r = static_cast<int>(p) + i;
-          if (flowing[i] && r < n_rings_)
+          if (flowing[i] && r < n_rings)
             lane_flowing_[static_cast<std::size_t>(r * words + k / kWordBits)] |= std::uint64_t{1} << (k % kWordBits);
         }
     }
@@ -210,21 +213,23 @@ void PolygonChain::ring_lanes_flow(double* phi, Tally& tally) {
 }
 
 // Node j's force (M_{j−1} − M_j) g_{j−1} + (M_{j+1} − M_j) g_j + N_j e_j − N_{j−1} e_{j−1}, as
-// ring_node_forces, weighted as φ (the axis nodes ½, their x rows 0) into the rings' rows.
+// ring_node_forces, weighted as φ (the axis nodes ½, their x rows 0) into the rings' rows: a
+// ring's (f_x, f_y) are adjacent rows of φ, so each lane's pair goes out as one store.
 void PolygonChain::ring_lanes_node_forces(double* phi) {
   const auto L = static_cast<std::size_t>(lanes_);
+  const auto ring_rows = 6 * static_cast<std::size_t>(n_ind_);
+  const int n_rings = n_rings_;
   const double* __restrict m = lane_m_.data();
   const double* __restrict n = lane_n_.data();
   const double* __restrict gx = lane_gx_.data();
   const double* __restrict gy = lane_gy_.data();
   const double* __restrict ex = lane_ex_.data();
   const double* __restrict ey = lane_ey_.data();
-  const auto node = [&](int j, int jm, int jp, bool weighted) {
+  const auto node = [&](int j, int jm, int jp, bool end) {
     const auto a = static_cast<std::size_t>(j) * L, am = static_cast<std::size_t>(jm) * L,
                ap = static_cast<std::size_t>(jp) * L;
-    const double w = node_weight(j);
-    const bool on_axis = half_ && weighted;
-    for (std::size_t p = 0; p < L; p += 2) {
+    double* row = phi + 6 * static_cast<std::size_t>(j) + 2;  // ring 0's (f_x, f_y) rows of node j
+    for (std::size_t p = 0; p < L; p += 2, row += 2 * ring_rows) {
       const Pair mj = lanes::load(m + a + p);
       const Pair before = lanes::load(m + am + p) - mj, after = lanes::load(m + ap + p) - mj;
       const Pair fx = before * lanes::load(gx + am + p) + after * lanes::load(gx + a + p) +
@@ -233,17 +238,19 @@ void PolygonChain::ring_lanes_node_forces(double* phi) {
       const Pair fy = before * lanes::load(gy + am + p) + after * lanes::load(gy + a + p) +
                       lanes::load(n + a + p) * lanes::load(ey + a + p) -
                       lanes::load(n + am + p) * lanes::load(ey + am + p);
-      for (int i = 0; i < 2; ++i) {
-        const int r = static_cast<int>(p) + i;
-        if (r >= n_rings_) break;
-        double* row = phi + node_offset(r, j);
-        if (weighted) {
-          row[2] = on_axis ? 0.0 : w * fx[i];
-          row[3] = w * fy[i];
-        } else {  // w = 1: w·f is f
-          row[2] = fx[i];
-          row[3] = fy[i];
-        }
+      const bool second = static_cast<int>(p) + 1 < n_rings;  // not the spare lane
+      if (!end) {  // weight 1: w·f is f
+        lanes::store(row, __builtin_shuffle(fx, fy, PairMask{0, 2}));
+        if (second) lanes::store(row + ring_rows, __builtin_shuffle(fx, fy, PairMask{1, 3}));
+        continue;
+      }
+      const double w = node_weight(j);
+      const bool on_axis = half_;
+      row[0] = on_axis ? 0.0 : w * fx[0];
+      row[1] = w * fy[0];
+      if (second) {
+        row[ring_rows] = on_axis ? 0.0 : w * fx[1];
+        row[ring_rows + 1] = w * fy[1];
       }
     }
   };

@@ -58,7 +58,7 @@ void PolygonChain::update_contact_boxes(const double* y) {
     for (int g = 0; g < n_rings_ * n_ind_; ++g)
       stale |= ~(lanes::abs(lanes::load(y + 6 * static_cast<std::size_t>(g)) -
                             lanes::load(reference + 2 * static_cast<std::size_t>(g))) <= reach);
-    fresh = !(stale[0] | stale[1]);
+    fresh = !lanes::any(stale);
   }
   if (fresh) return;
   const int segs = contact_segments();
@@ -74,6 +74,18 @@ void PolygonChain::build_candidates(const double* y) {
   std::fill(candidate_start_.begin(), candidate_start_.end(), 0);
   candidate_nodes_.clear();
   const double grow = candidate_margin_;  // on top of the t already in seg_box_
+  // Each ring's box (its segments' boxes together): a node outside it, grown, has no
+  // candidate on that ring — most nodes of a neighbouring ring, which meets it at one place.
+  std::vector<std::array<double, 4>>& ring_box = candidate_ring_box_;
+  ring_box.assign(static_cast<std::size_t>(n_rings_), {0.0, 0.0, 0.0, 0.0});
+  for (int r = 0; r < n_rings_; ++r) {
+    auto& rb = ring_box[static_cast<std::size_t>(r)];
+    rb = seg_box_[static_cast<std::size_t>(r * n_ind_)];
+    for (int a = 1; a < segs; ++a) {
+      const auto& sb = seg_box_[static_cast<std::size_t>(r * n_ind_ + a)];
+      rb = {std::min(rb[0], sb[0]), std::min(rb[1], sb[1]), std::max(rb[2], sb[2]), std::max(rb[3], sb[3])};
+    }
+  }
   auto build = [&](int rs, int rm, bool self) {
     const int pass = contact_pass(rs, rm, self);
     const auto base = static_cast<std::size_t>(pass * (n_ind_ + 1));
@@ -83,10 +95,12 @@ void PolygonChain::build_candidates(const double* y) {
       candidate_start_[base + static_cast<std::size_t>(j)] = static_cast<int>(first);
       const auto os = node_offset(rs, j);
       const double sx = y[os], sy = y[os + 1];
-      for (int a = 0; a < segs; ++a) {
-        if (self && near_own_segment(j, a)) continue;  // never a candidate: left out once here
+      const auto& rb = ring_box[static_cast<std::size_t>(rm)];
+      const bool near_ring = sx >= rb[0] - grow && sx <= rb[2] + grow && sy >= rb[1] - grow && sy <= rb[3] + grow;
+      for (int a = 0; near_ring && a < segs; ++a) {
         const auto& sb = seg_box_[static_cast<std::size_t>(rm * n_ind_ + a)];
-        if (sx >= sb[0] - grow && sx <= sb[2] + grow && sy >= sb[1] - grow && sy <= sb[3] + grow)
+        if (sx >= sb[0] - grow && sx <= sb[2] + grow && sy >= sb[1] - grow && sy <= sb[3] + grow &&
+            !(self && near_own_segment(j, a)))  // the own ring's near bars: never a candidate
           candidate_segment_.push_back(a);
       }
       if (candidate_segment_.size() > first) candidate_nodes_.push_back(j);
@@ -117,6 +131,8 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
   const int* node_last = candidate_nodes_.data() + candidate_node_start_[2 * static_cast<std::size_t>(pass) + 1];
   const double* master = y + node_offset(rm, 0);
   const lanes::Pair grow = {t_, t_};
+  // The half model's segments end at a + 1 (a ≤ n_ind − 2); the full ring's last one wraps.
+  const int wrap = half_ ? -1 : n_ind_ - 1;
   for (const int* jt = node_first; jt != node_last; ++jt) {
     const int j = *jt;
     const auto os = node_offset(rs, j);
@@ -131,11 +147,9 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
       const int a = *it;
       // The segment's box grown by t (segment_box's values): the node outside it is too far.
       const double* pa = master + 6 * static_cast<std::size_t>(a);
-      const double* pb = a + 1 == n_ind_ ? master : pa + 6;
+      const double* pb = a == wrap ? master : pa + 6;
       const lanes::Pair end_a = lanes::load(pa), end_b = lanes::load(pb);
-      const lanes::PairMask outside =
-          (slave < lanes::min(end_a, end_b) - grow) | (slave > lanes::max(end_a, end_b) + grow);
-      if (outside[0] | outside[1]) continue;
+      if (lanes::any_less(slave, lanes::min(end_a, end_b) - grow, lanes::max(end_a, end_b) + grow, slave)) continue;
       const double ax = end_a[0], ay = end_a[1], bx = end_b[0], by = end_b[1];
       const double ex = bx - ax, ey = by - ay;
       const double ll = ex * ex + ey * ey;

@@ -49,6 +49,27 @@ typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
 #endif
 }
 
+// Whether any lane of m is set (movmskpd where SSE2 is there: one instruction, not two lane
+// extractions).
+[[gnu::always_inline]] inline bool any(PairMask m) {
+#if defined(__SSE2__)
+  return __builtin_ia32_movmskpd(reinterpret_cast<Pair>(m)) != 0;
+#else
+  return (m[0] | m[1]) != 0;
+#endif
+}
+
+// Whether a < b or c < d in some lane: a box test (the point below the low corner or above
+// the high one). The comparisons go straight to cmpltpd, orpd and movmskpd: through the
+// vector extension's boolean vectors GCC renormalised the or'ed masks lane by lane.
+[[gnu::always_inline]] inline bool any_less(Pair a, Pair b, Pair c, Pair d) {
+#if defined(__SSE2__)
+  return __builtin_ia32_movmskpd(__builtin_ia32_orpd(__builtin_ia32_cmpltpd(a, b), __builtin_ia32_cmpltpd(c, d))) != 0;
+#else
+  return a[0] < b[0] || a[1] < b[1] || c[0] < d[0] || c[1] < d[1];
+#endif
+}
+
 // |x| per lane (the sign bit cleared, as std::abs).
 [[gnu::always_inline]] inline Pair abs(Pair x) {
   return reinterpret_cast<Pair>(reinterpret_cast<PairMask>(x) & PairMask{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
