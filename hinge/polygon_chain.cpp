@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hinge/redwood_hinge_length.hpp"
+#include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
 
@@ -330,12 +331,10 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 void PolygonChain::rhs(double t, const double* y, double* dydt) {
   evaluate(t, y, dydt, false);
   if (flow_y_) {  // the central difference's evaluation: round-off as its other cheaper forms
-    double* row = dydt + 2;
+    double* row = dydt + 2;  // a node's (v_x′, v_y′) rows are a pair
     for (int r = 0; r < n_rings_; ++r)
-      for (int j = 0; j < n_ind_; ++j, row += 6) {
-        row[0] *= node_inverse_mass_[static_cast<std::size_t>(j)];
-        row[1] *= node_inverse_mass_[static_cast<std::size_t>(j)];
-      }
+      for (int j = 0; j < n_ind_; ++j, row += 6)
+        lanes::store(row, lanes::load(row) * node_inverse_mass_[static_cast<std::size_t>(j)]);
     for (std::size_t k = inertia_body_first_; k < inertia_rows_.size(); ++k) dydt[inertia_rows_[k]] *= inverse_mu_[k];
     return;
   }

@@ -67,26 +67,36 @@ void PolygonChain::ring_lanes_gather(const double* y, double* phi) {
   double* __restrict py = lane_py_.data();
   double* __restrict tp = lane_tp_.data();
   double* __restrict ab = lane_ab_.data();
-  for (int r = 0; r < lanes_; ++r) {
-    const bool spare = r >= n_rings_;
-    const double* __restrict node = y + node_offset(spare ? n_rings_ - 1 : r, 0);
-    double* __restrict row = phi + node_offset(spare ? n_rings_ - 1 : r, 0);
-    for (int j = 0; j < n_ind_; ++j, node += 6, row += 6) {
-      const auto at = static_cast<std::size_t>(j) * L + static_cast<std::size_t>(r);
-      px[at] = node[0];
-      py[at] = node[1];
-      tp[at] = node[4];
-      ab[at] = node[5];
-      if (spare) continue;
-      row[0] = node[2];
-      row[1] = node[3];
-      row[4] = row[5] = 0.0;
+  const Pair zero = {0.0, 0.0};
+  // Two rings at a time: a node's (x, y) and (θp, ā) are pairs of the state, unpacked into
+  // the two rings' lanes; the spare lane repeats the last ring.
+  for (int p = 0; p < lanes_; p += 2) {
+    const bool second = p + 1 < n_rings_;
+    const double* __restrict node0 = y + node_offset(p, 0);
+    const double* __restrict node1 = y + node_offset(second ? p + 1 : p, 0);
+    double* __restrict row0 = phi + node_offset(p, 0);
+    double* __restrict row1 = phi + node_offset(second ? p + 1 : p, 0);
+    for (int j = 0; j < n_ind_; ++j, node0 += 6, node1 += 6, row0 += 6, row1 += 6) {
+      const auto at = static_cast<std::size_t>(j) * L + static_cast<std::size_t>(p);
+      const Pair a = lanes::load(node0), b = lanes::load(node1);
+      const Pair c = lanes::load(node0 + 4), d = lanes::load(node1 + 4);
+      lanes::store(px + at, __builtin_shuffle(a, b, PairMask{0, 2}));
+      lanes::store(py + at, __builtin_shuffle(a, b, PairMask{1, 3}));
+      lanes::store(tp + at, __builtin_shuffle(c, d, PairMask{0, 2}));
+      lanes::store(ab + at, __builtin_shuffle(c, d, PairMask{1, 3}));
+      lanes::store(row0, lanes::load(node0 + 2));
+      lanes::store(row0 + 4, zero);
+      if (second) {
+        lanes::store(row1, lanes::load(node1 + 2));
+        lanes::store(row1 + 4, zero);
+      }
     }
-    if (!spare && half_) {  // the axis nodes' x stays 0
+  }
+  if (half_)  // the axis nodes' x stays 0
+    for (int r = 0; r < n_rings_; ++r) {
       phi[node_offset(r, 0)] = 0.0;
       phi[node_offset(r, n_ind_ - 1)] = 0.0;
     }
-  }
   for (const int k : ring_nodes_) {
     if (!(half_ && k >= n_ind_)) continue;
     const auto at = static_cast<std::size_t>(k) * L, from = static_cast<std::size_t>(n_full_ - k) * L;
