@@ -22,8 +22,9 @@ inline constexpr double kHingeSeriesLimit = 0.2;
 // p by Estrin's scheme (pairs, then s², s⁴, s⁸) rather than Horner's: four levels of
 // dependent multiply-adds instead of ten, so that the hinges' series overlap. T is double or
 // a vector of doubles (hinge/ring_lanes.hpp: two rings' hinges at once, the same bits).
+// Always inlined: the vector copy is compiled for the instruction set of its caller.
 template <class T>
-inline T small_atan(T w) {
+[[gnu::always_inline]] inline T small_atan(T w) {
   const T s = w * w, s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
   const T q01 = 1.0 / 3.0 - s * (1.0 / 5.0), q23 = 1.0 / 7.0 - s * (1.0 / 9.0);
   const T q45 = 1.0 / 11.0 - s * (1.0 / 13.0), q67 = 1.0 / 15.0 - s * (1.0 / 17.0);

@@ -18,6 +18,8 @@
 // dampers implicit (or none) and no mass damping (ring_lanes_apply); the explicit dampers and
 // the reference forms (IDA, Odeint, the Jacobians, recorded evaluations) keep the per-ring
 // pass.
+#pragma GCC diagnostic ignored "-Wpsabi"  // the AVX copy of the hinge pass (below)
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -138,54 +140,131 @@ void PolygonChain::ring_lanes_bars() {
     }
 }
 
+namespace {
+
+// Four rings on the lanes of one AVX vector (the hinges' series, below): generic vector
+// operations only, inlined into the avx2-compiled pass (no FMA: "avx2" does not imply it).
+// Every function taking or returning a Quad is always inlined there, so none is ever called
+// with the non-AVX ABI that -Wpsabi warns about (silenced for this file, above its includes:
+// small_atan's vector copy is diagnosed at its definition).
+typedef double Quad __attribute__((vector_size(32)));
+typedef long long QuadMask __attribute__((vector_size(32)));
+typedef double QuadMem __attribute__((vector_size(32), aligned(8), may_alias));
+
+template <class V>
+struct Ops;
+template <>
+struct Ops<Pair> {
+  using Mask = PairMask;
+  static constexpr int width = 2;
+  [[gnu::always_inline]] static Pair load(const double* p) { return lanes::load(p); }
+  [[gnu::always_inline]] static void store(double* p, Pair v) { lanes::store(p, v); }
+  [[gnu::always_inline]] static Pair abs(Pair x) { return lanes::abs(x); }
+  [[gnu::always_inline]] static Pair min(Pair a, Pair b) { return lanes::min(a, b); }
+  [[gnu::always_inline]] static Pair select(Mask m, Pair a, Pair b) { return lanes::select(m, a, b); }
+  [[gnu::always_inline]] static bool any(Mask m) { return lanes::any(m); }
+  [[gnu::always_inline]] static bool all(Mask m) { return m[0] && m[1]; }
+};
+template <>
+struct Ops<Quad> {
+  using Mask = QuadMask;
+  static constexpr int width = 4;
+  [[gnu::always_inline]] static Quad load(const double* p) { return *reinterpret_cast<const QuadMem*>(p); }
+  [[gnu::always_inline]] static void store(double* p, Quad v) { *reinterpret_cast<QuadMem*>(p) = v; }
+  [[gnu::always_inline]] static Quad select(Mask m, Quad a, Quad b) {
+    return reinterpret_cast<Quad>((reinterpret_cast<Mask>(a) & m) | (reinterpret_cast<Mask>(b) & ~m));
+  }
+  [[gnu::always_inline]] static Quad abs(Quad x) {
+    constexpr long long magnitude = 0x7fffffffffffffffLL;
+    return reinterpret_cast<Quad>(reinterpret_cast<Mask>(x) & Mask{magnitude, magnitude, magnitude, magnitude});
+  }
+  [[gnu::always_inline]] static Quad min(Quad a, Quad b) { return select(b < a, b, a); }  // std::min
+  [[gnu::always_inline]] static bool any(Mask m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+  [[gnu::always_inline]] static bool all(Mask m) { return m[0] && m[1] && m[2] && m[3]; }
+};
+
+// What the hinge pass reads and writes (PolygonChain::ring_lanes_hinges).
+struct HingePass {
+  const double *ex, *ey, *tp, *ab;
+  double *th, *m, *fm;
+  std::uint64_t* flowing;
+  const int* hinges;
+  std::size_t hinge_count, lanes;
+  int n_full, n_ind, n_rings, words;
+  double turn0, turn_cos, turn_sin, k_theta, M0, H, cap;
+};
+
+// Hinge k on lanes p … p + width − 1 (prev: bar k − 1's values, at: bar and hinge k's).
+template <class V>
+[[gnu::always_inline]] inline void hinge_lanes(const HingePass& h, int k, std::size_t at, std::size_t prev,
+                                               std::size_t p) {
+  using O = Ops<V>;
+  const V exm = O::load(h.ex + prev), eym = O::load(h.ey + prev);
+  const V exk = O::load(h.ex + at), eyk = O::load(h.ey + at);
+  const V tx = exm * h.turn_cos + eym * h.turn_sin;
+  const V ty = eym * h.turn_cos - exm * h.turn_sin;
+  const V cross = exk * ty - eyk * tx, dot = exk * tx + eyk * ty;
+  const V w = cross / (1.0 + dot);
+  V theta = 2.0 * small_atan(w);
+  const typename O::Mask series = (dot > 0.0) & (O::abs(w) <= kHingeSeriesLimit);
+  if (!O::all(series))
+    for (int i = 0; i < O::width; ++i)
+      if (!series[i]) theta[i] = hinge_rotation_atan2(cross[i], dot[i], h.turn0);
+  O::store(h.th + at, theta);
+  if (k >= h.n_ind) return;  // mirrored: its moment after the flow update (ring_lanes_flow)
+  const V M = h.k_theta * (theta - O::load(h.tp + at));
+  const V yield = O::min(h.M0 + h.H * O::load(h.ab + at), V{} + h.cap);
+  const typename O::Mask flowing = O::abs(M) > yield;
+  O::store(h.m + at, M);
+  O::store(h.fm + at, O::select(flowing, O::load(h.fm + at), M));
+  if (O::any(flowing))
+    for (int i = 0; i < O::width; ++i) {
+      const int r = static_cast<int>(p) + i;
+      if (flowing[i] && r < h.n_rings)
+        h.flowing[static_cast<std::size_t>(r * h.words + k / kWordBits)] |= std::uint64_t{1} << (k % kWordBits);
+    }
+}
+
+// All hinges, the lanes four at a time where Wide (then a pair for the rest), else in pairs.
+template <bool Wide>
+[[gnu::always_inline]] inline void hinge_pass(const HingePass& h) {
+  for (std::size_t i = 0; i < h.hinge_count; ++i) {
+    const int k = h.hinges[i];
+    const int km = k == 0 ? h.n_full - 1 : k - 1;
+    const auto at0 = static_cast<std::size_t>(k) * h.lanes, prev0 = static_cast<std::size_t>(km) * h.lanes;
+    std::size_t p = 0;
+    if constexpr (Wide)
+      for (; p + 4 <= h.lanes; p += 4) hinge_lanes<Quad>(h, k, at0 + p, prev0 + p, p);
+    for (; p < h.lanes; p += 2) hinge_lanes<Pair>(h, k, at0 + p, prev0 + p, p);
+  }
+}
+
+void hinge_pass_sse2(const HingePass& h) { hinge_pass<false>(h); }
+
+#if defined(__x86_64__) && !defined(__FMA__)
+[[gnu::target("avx2")]] void hinge_pass_avx2(const HingePass& h) { hinge_pass<true>(h); }
+bool avx2_available() { return __builtin_cpu_supports("avx2"); }
+#else
+void hinge_pass_avx2(const HingePass& h) { hinge_pass<false>(h); }
+bool avx2_available() { return false; }
+#endif
+
+}  // namespace
+
 // Hinge rotations θ (the series, atan2 on the lanes beyond it), and for the independent
 // hinges the trial moment k_θ(θ − θp) against the yield moment: the ones above it are noted
 // for ring_lanes_flow, the others keep their moment for the next step's work (flow_moment_).
+// Four rings to an AVX vector where the CPU has AVX2 (and the build no FMA, which could fuse
+// a product into a sum on these lanes only), two to an SSE2 one otherwise: the same bits.
 void PolygonChain::ring_lanes_hinges() {
-  const auto L = static_cast<std::size_t>(lanes_);
-  const double turn0 = 2.0 * std::numbers::pi / n_full_;
-  const double* __restrict ex = lane_ex_.data();
-  const double* __restrict ey = lane_ey_.data();
-  const double* __restrict tp = lane_tp_.data();
-  const double* __restrict ab = lane_ab_.data();
-  double* __restrict th = lane_theta_.data();
-  double* __restrict m = lane_m_.data();
-  double* __restrict fm = flow_moment_.data();
-  // The members as locals: the lane stores (may_alias) would otherwise reload them.
-  const Pair cap = {cap_, cap_};
-  const double turn_cos = turn_cos_, turn_sin = turn_sin_, k_theta = k_theta_, M0 = M0_, H = H_;
-  const int words = flow_words(n_full_), n_ind = n_ind_, n_rings = n_rings_;
-  for (const int k : ring_hinges_) {
-    const int km = k == 0 ? n_full_ - 1 : k - 1;
-    const auto at0 = static_cast<std::size_t>(k) * L, prev0 = static_cast<std::size_t>(km) * L;
-    for (std::size_t p = 0; p < L; p += 2) {
-      const auto at = at0 + p, prev = prev0 + p;
-      const Pair exm = lanes::load(ex + prev), eym = lanes::load(ey + prev);
-      const Pair exk = lanes::load(ex + at), eyk = lanes::load(ey + at);
-      const Pair tx = exm * turn_cos + eym * turn_sin;
-      const Pair ty = eym * turn_cos - exm * turn_sin;
-      const Pair cross = exk * ty - eyk * tx, dot = exk * tx + eyk * ty;
-      const Pair w = cross / (1.0 + dot);
-      Pair theta = 2.0 * small_atan(w);
-      const PairMask series = (dot > 0.0) & (lanes::abs(w) <= kHingeSeriesLimit);
-      if (!(series[0] && series[1]))
-        for (int i = 0; i < 2; ++i)
-          if (!series[i]) theta[i] = hinge_rotation_atan2(cross[i], dot[i], turn0);
-      lanes::store(th + at, theta);
-      if (k >= n_ind) continue;  // mirrored: its moment after the flow update (ring_lanes_flow)
-      const Pair M = k_theta * (theta - lanes::load(tp + at));
-      const Pair yield = lanes::min(M0 + H * lanes::load(ab + at), cap);
-      const PairMask flowing = lanes::abs(M) > yield;
-      lanes::store(m + at, M);
-      lanes::store(fm + at, lanes::select(flowing, lanes::load(fm + at), M));
-      if (lanes::any(flowing))
-        for (int i = 0; i < 2; ++i) {
-          const int r = static_cast<int>(p) + i;
-          if (flowing[i] && r < n_rings)
-            lane_flowing_[static_cast<std::size_t>(r * words + k / kWordBits)] |= std::uint64_t{1} << (k % kWordBits);
-        }
-    }
-  }
+  const HingePass h{lane_ex_.data(), lane_ey_.data(), lane_tp_.data(), lane_ab_.data(), lane_theta_.data(),
+                    lane_m_.data(), flow_moment_.data(), lane_flowing_.data(), ring_hinges_.data(),
+                    ring_hinges_.size(), static_cast<std::size_t>(lanes_), n_full_, n_ind_, n_rings_,
+                    flow_words(n_full_), 2.0 * std::numbers::pi / n_full_, turn_cos_, turn_sin_, k_theta_, M0_, H_,
+                    cap_};
+  static const bool avx2 = avx2_available();
+  if (avx2) hinge_pass_avx2(h);
+  else hinge_pass_sse2(h);
 }
 
 // The yielding hinges ring by ring, hinge by hinge (the per-ring pass's order of the work and
