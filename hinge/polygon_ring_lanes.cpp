@@ -55,7 +55,12 @@ void PolygonChain::plan_ring_lanes() {
   flow_moment_.assign(static_cast<std::size_t>(n_ind_) * static_cast<std::size_t>(lanes_), 0.0);
 }
 
+// Not in a build with FMA (RINGCRUSH_NATIVE): GCC may fuse a product into a sum there, on the
+// lanes differently from the per-ring pass (as cps8_lanes_bitwise_build).
 bool PolygonChain::ring_lanes_apply() const {
+#ifdef __FMA__
+  return false;
+#endif
   return ring_lanes_ && flow_y_ != nullptr && jac_ == nullptr && c_bar_ == 0.0 && c_hinge_ == 0.0 &&
          !(in_.mass_damping_per_s > 0.0);
 }

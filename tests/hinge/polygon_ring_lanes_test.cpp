@@ -74,7 +74,9 @@ std::vector<Evaluation> evaluate(bool lanes, const PolygonChainInput& in, const 
     for (int j = 0; j < chain.independent_nodes(); ++j) e.y[chain.node_offset(r, j) + 1] += 1e-5 * (j % 5);
   chain.rhs_with_flow_update(1e-7, e.y.data(), 2e-7, e.dydt.data(), e.work, e.relaxation);
   out.push_back(e);
+#ifndef __FMA__  // a build with FMA keeps the per-ring pass (polygon_ring_lanes.cpp)
   EXPECT_EQ(chain.ring_lane_passes(), lanes ? 2 : 0);  // the pass compared is the one taken
+#endif
   return out;
 }
 
