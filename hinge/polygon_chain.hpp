@@ -278,9 +278,10 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   double contact_landing_step() const { return landing_step_; }
 
   // The central difference's ring pass over all rings at once, two rings to an SSE2 vector
-  // (polygon_ring_lanes.cpp), where it applies (implicit or no Kelvin–Voigt dampers, no mass
-  // damping): the same operations per ring as the per-ring pass, so the same bits. On by
-  // default; off runs the per-ring pass (the tests' reference).
+  // (the hinges four to an AVX one where the CPU has AVX2; polygon_ring_lanes.cpp), where it
+  // applies (implicit or no Kelvin–Voigt dampers, no mass damping, a build without FMA): the
+  // same operations per ring as the per-ring pass, so the same bits. On by default; off runs
+  // the per-ring pass (the tests' reference).
   void set_ring_lanes(bool on) { ring_lanes_ = on; }
   bool ring_lanes() const { return ring_lanes_; }
   long ring_lane_passes() const { return ring_lane_passes_; }  // evaluations that took it
