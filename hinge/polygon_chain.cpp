@@ -8,6 +8,7 @@
 #include <string>
 
 #include "hinge/redwood_hinge_length.hpp"
+#include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
 
@@ -127,6 +128,10 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
       inertia_rows_.push_back(i);
       inverse_mu_.push_back(1.0 / mu_[i]);
     }
+  // A node row with μ = 1 (not in the list) multiplied by 1/1 keeps its bits.
+  for (int j = 0; j < n_ind_; ++j) node_inverse_mass_.push_back(1.0 / mu_[node_offset(0, j) + 2]);
+  while (inertia_body_first_ < inertia_rows_.size() && inertia_rows_[inertia_body_first_] < body_base_)
+    ++inertia_body_first_;
   phi_.resize(size_);
   hinge_gx_.resize(n_full_);
   hinge_gy_.resize(n_full_);
@@ -139,7 +144,7 @@ PolygonChain::PolygonChain(const PolygonChainInput& input) : in_(input) {
   contact_k_row_.assign(static_cast<std::size_t>(n_rings_ * n_ind_ + n_bodies_), 0.0);
   contact_c_row_.assign(contact_k_row_.size(), 0.0);
   seg_box_.resize(static_cast<std::size_t>(n_rings_ * n_ind_));
-  flow_moment_.assign(static_cast<std::size_t>(n_rings_ * n_ind_), 0.0);
+  plan_ring_lanes();  // and flow_moment_, in the lanes' order
   candidate_reference_.resize(static_cast<std::size_t>(2 * n_rings_ * n_ind_));
   candidate_start_.resize(static_cast<std::size_t>((3 * n_rings_) * (n_ind_ + 1)));
   candidate_node_start_.assign(static_cast<std::size_t>(2 * 3 * n_rings_), 0);
@@ -326,7 +331,11 @@ void PolygonChain::evaluate(double t, const double* y, double* phi, bool record)
 void PolygonChain::rhs(double t, const double* y, double* dydt) {
   evaluate(t, y, dydt, false);
   if (flow_y_) {  // the central difference's evaluation: round-off as its other cheaper forms
-    for (std::size_t k = 0; k < inertia_rows_.size(); ++k) dydt[inertia_rows_[k]] *= inverse_mu_[k];
+    double* row = dydt + 2;  // a node's (v_x′, v_y′) rows are a pair
+    for (int r = 0; r < n_rings_; ++r)
+      for (int j = 0; j < n_ind_; ++j, row += 6)
+        lanes::store(row, lanes::load(row) * node_inverse_mass_[static_cast<std::size_t>(j)]);
+    for (std::size_t k = inertia_body_first_; k < inertia_rows_.size(); ++k) dydt[inertia_rows_[k]] *= inverse_mu_[k];
     return;
   }
   for (const std::size_t i : inertia_rows_) dydt[i] /= mu_[i];

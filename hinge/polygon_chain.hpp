@@ -296,6 +296,15 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void set_contact_landing(double depth, double min_speed);
   double contact_landing_step() const { return landing_step_; }
 
+  // The central difference's ring pass over all rings at once, two rings to an SSE2 vector
+  // (the hinges four to an AVX one where the CPU has AVX2; polygon_ring_lanes.cpp), where it
+  // applies (implicit or no Kelvin–Voigt dampers, no mass damping, a build without FMA): the
+  // same operations per ring as the per-ring pass, so the same bits. On by default; off runs
+  // the per-ring pass (the tests' reference).
+  void set_ring_lanes(bool on) { ring_lanes_ = on; }
+  bool ring_lanes() const { return ring_lanes_; }
+  long ring_lane_passes() const { return ring_lane_passes_; }  // evaluations that took it
+
  private:
   struct Body {
     double half_thickness;  // contact faces at y ± h
@@ -331,7 +340,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
                      bool record, Tally& tally);
   void body_body_contact(double t, const double* y, double* phi, Tally& tally);
   // polygon_segment_contact.cpp: ring–ring and inner-wall node–segment contact. The broad
-  // phase: per segment a box grown by t, refreshed once per evaluation, and per contact pass
+  // phase: per segment a box grown by t (formed at the list builds; between them each listed
+  // segment's box is tested from its end points), and per contact pass
   // (slave ring, master ring) and slave node a Verlet list of the segments whose box, grown
   // by t plus `candidate_margin`, held the node when the lists were built; they are rebuilt
   // once some node has moved more than half the margin (so no segment whose t-box can hold
@@ -415,6 +425,11 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // only these (x/1 is x).
   std::vector<std::size_t> inertia_rows_;
   std::vector<double> inverse_mu_;  // 1/μ of inertia_rows_ (the central difference's rhs)
+  // The same 1/μ per independent node (both velocity rows, every ring alike) and where the
+  // bodies' rows start in inertia_rows_: the central difference's rhs walks the node rows as
+  // one strided range.
+  std::vector<double> node_inverse_mass_;
+  std::size_t inertia_body_first_ = 0;
   double last_impactor_force_ = 0.0, last_target_force_ = 0.0;
   double last_contact_energy_ = 0.0, last_elastic_ = 0.0;
   double last_max_penetration_ = 0.0, last_max_strain_ = 0.0;
@@ -428,10 +443,9 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<double> candidate_reference_;               // node x, y when the lists were built
   bool candidates_built_ = false;
   // Of the last build: per pass p [start, end) at 2p, 2p + 1 into candidate_nodes_ (the slave nodes with a
-  // non-empty list, ascending), and the segments (ring·n_ind + a) listed anywhere, the only
-  // boxes an evaluation reads until the next build.
-  std::vector<int> candidate_node_start_, candidate_nodes_, candidate_boxes_;
-  std::vector<char> candidate_box_mark_;
+  // non-empty list, ascending).
+  std::vector<int> candidate_node_start_, candidate_nodes_;
+  std::vector<std::array<double, 4>> candidate_ring_box_;  // build_candidates' scratch
   void segment_box(int ring, int segment, const double* y);
   double candidate_margin_ = 0.0;
   std::vector<Triplet>* jac_ = nullptr;  // set while analytic_jacobian runs evaluate
@@ -452,6 +466,28 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
   // [j] of the ring in the pass while the flow update runs: |M| ≤ M_y, no flow.
   std::vector<char> hinge_elastic_;
+  // The flow update of hinge k of ring r at rotation θ from its trial moment (θp, ā in
+  // flow_y_, the work, flow_moment_): the hinge's moment after it. Both ring passes use it.
+  double flow_hinge(int ring, int k, double theta, double trial);
+  std::size_t flow_index(int ring, int k) const {  // flow_moment_ in the lanes' order
+    return static_cast<std::size_t>(k) * static_cast<std::size_t>(lanes_) + static_cast<std::size_t>(ring);
+  }
+  // The ring lanes (polygon_ring_lanes.cpp): lanes_ = rings rounded up to even; value k of
+  // ring r at k·lanes_ + r, k over the full ring's nodes, bars and hinges 0…N.
+  bool ring_lanes_ = true;
+  long ring_lane_passes_ = 0;
+  int lanes_ = 0;
+  std::vector<double> lane_px_, lane_py_, lane_tp_, lane_ab_, lane_ex_, lane_ey_, lane_gx_, lane_gy_, lane_n_,
+      lane_theta_, lane_m_;
+  std::vector<std::uint64_t> lane_flowing_;  // [ring][word]: hinges above their yield moment
+  bool ring_lanes_apply() const;
+  void plan_ring_lanes();
+  void ring_lanes_gather(const double* y, double* phi);
+  void ring_lanes_bars();
+  void ring_lanes_hinges();
+  void ring_lanes_flow(double* phi, Tally& tally);
+  void ring_lanes_node_forces(double* phi);
+  void central_difference_ring_lanes(const double* y, double* phi, Tally& tally);
   double landing_depth_ = 0.0, landing_speed_ = 0.0;
   double landing_step_ = std::numeric_limits<double>::infinity();
   void note_landing(double gap, double rate) {

@@ -65,28 +65,34 @@ double PolygonChain::return_map(double trial, double a0, double dt, double& min_
   return d;
 }
 
-// Hinge k (independent) of ring r at rotation θ: θp, ā in the state, the scratch θp of the
-// hinge and of its mirror image, the moment, and the work.
-void PolygonChain::update_hinge_flow(int r, int k, double theta) {
+// Hinge k (independent) of ring r at rotation θ, trial moment k_θ(θ − θp_n): θp, ā in the
+// state, the work; returns the moment after the update.
+double PolygonChain::flow_hinge(int r, int k, double theta, double trial) {
   const auto o = node_offset(r, k);
-  const auto h = static_cast<std::size_t>(r * n_ind_ + k);
-  const double trial = moment_[k];
+  const auto h = flow_index(r, k);
+  double moment = trial;
   const double d = flow_dt_ > 0.0 ? return_map(trial, flow_y_[o + 5], flow_dt_, flow_relaxation_) : 0.0;
   if (d > 0.0) {
     const double dtheta_p = trial > 0 ? d : -d;
     flow_y_[o + 4] += dtheta_p;
     flow_y_[o + 5] += d;
-    theta_p_[k] = flow_y_[o + 4];
-    if (half_ && k > 0 && k < n_ind_ - 1) theta_p_[n_full_ - k] = theta_p_[k];
-    moment_[k] = k_theta_ * (theta - theta_p_[k]);
+    moment = k_theta_ * (theta - flow_y_[o + 4]);
     // Plastic work ½(M_n + M_{n+1}) Δθp, with the moments the leapfrog's forces used at the
     // two ends of the step: the hinge's elastic energy then changes by exactly
     // ½(M_n + M_{n+1})(Δθ − Δθp) against the forces' work ½(M_n + M_{n+1}) Δθ, and the
     // balance closes (booking ½(|M_trial| + |M_{n+1}|) Δλ instead leaves ½ k_θ Δλ Δθ per step
     // out: ~1e-3 of the impact energy on Test 30).
-    flow_work_ += node_weight(k) * 0.5 * (flow_moment_[h] + moment_[k]) * dtheta_p;
+    flow_work_ += node_weight(k) * 0.5 * (flow_moment_[h] + moment) * dtheta_p;
   }
-  flow_moment_[h] = moment_[k];
+  flow_moment_[h] = moment;
+  return moment;
+}
+
+// The per-ring pass's scratch: the hinge's θp and that of its mirror image, and its moment.
+void PolygonChain::update_hinge_flow(int r, int k, double theta) {
+  moment_[k] = flow_hinge(r, k, theta, moment_[k]);
+  theta_p_[k] = flow_y_[node_offset(r, k) + 4];
+  if (half_ && k > 0 && k < n_ind_ - 1) theta_p_[n_full_ - k] = theta_p_[k];
 }
 
 // The ring laws of the central difference's evaluation (ring_forces, reference = false), ring
@@ -102,7 +108,7 @@ void PolygonChain::central_difference_ring_laws(int r, Tally& tally) {
       const double yield = std::min(M0_ + H_ * flow_y_[node_offset(r, k) + 5], cap_);
       const bool elastic = !(std::abs(moment_[k]) > yield);
       hinge_elastic_[static_cast<std::size_t>(k)] = elastic;
-      if (elastic) flow_moment_[static_cast<std::size_t>(r * n_ind_ + k)] = moment_[k];
+      if (elastic) flow_moment_[flow_index(r, k)] = moment_[k];
       else update_hinge_flow(r, k, theta);
     }
     double M = moment_[k];

@@ -20,26 +20,34 @@ inline constexpr double kHingeSeriesLimit = 0.2;
 
 // atan(w) for |w| ≤ kHingeSeriesLimit: w − w s p(s), s = w², p = 1/3 − s/5 + s²/7 − … − s⁹/21,
 // p by Estrin's scheme (pairs, then s², s⁴, s⁸) rather than Horner's: four levels of
-// dependent multiply-adds instead of ten, so that the hinges' series overlap.
-inline double small_atan(double w) {
-  const double s = w * w, s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
-  const double q01 = 1.0 / 3.0 - s * (1.0 / 5.0), q23 = 1.0 / 7.0 - s * (1.0 / 9.0);
-  const double q45 = 1.0 / 11.0 - s * (1.0 / 13.0), q67 = 1.0 / 15.0 - s * (1.0 / 17.0);
-  const double q89 = 1.0 / 19.0 - s * (1.0 / 21.0);
-  const double p = (q01 + s2 * q23) + s4 * (q45 + s2 * q67) + s8 * q89;
+// dependent multiply-adds instead of ten, so that the hinges' series overlap. T is double or
+// a vector of doubles (hinge/ring_lanes.hpp: two rings' hinges at once, the same bits).
+// Always inlined: the vector copy is compiled for the instruction set of its caller.
+template <class T>
+[[gnu::always_inline]] inline T small_atan(T w) {
+  const T s = w * w, s2 = s * s, s4 = s2 * s2, s8 = s4 * s4;
+  const T q01 = 1.0 / 3.0 - s * (1.0 / 5.0), q23 = 1.0 / 7.0 - s * (1.0 / 9.0);
+  const T q45 = 1.0 / 11.0 - s * (1.0 / 13.0), q67 = 1.0 / 15.0 - s * (1.0 / 17.0);
+  const T q89 = 1.0 / 19.0 - s * (1.0 / 21.0);
+  const T p = (q01 + s2 * q23) + s4 * (q45 + s2 * q67) + s8 * q89;
   return w - w * (s * p);
 }
 
 // θ = atan2(cross, dot) of two unit vectors (a hinge's turned bars), in
 // (−π − turn0, π − turn0]. dot > 0 keeps 1 + dot away from the cancellation near θ = π.
+// The branch beyond the series: atan2 moved into the range.
+inline double hinge_rotation_atan2(double cross, double dot, double turn0) {
+  constexpr double pi = 3.141592653589793238462643383279502884;
+  const double theta = std::atan2(cross, dot);
+  return theta > pi - turn0 ? theta - 2.0 * pi : theta;
+}
+
 inline double hinge_rotation(double cross, double dot, double turn0) {
   if (dot > 0.0) {
     const double w = cross / (1.0 + dot);
     if (std::abs(w) <= kHingeSeriesLimit) return 2.0 * small_atan(w);
   }
-  constexpr double pi = 3.141592653589793238462643383279502884;
-  const double theta = std::atan2(cross, dot);
-  return theta > pi - turn0 ? theta - 2.0 * pi : theta;
+  return hinge_rotation_atan2(cross, dot, turn0);
 }
 
 }  // namespace ringcrush::hinge

@@ -157,6 +157,10 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
   // further (Test 30 free: 0.002 D, its energy balance 4× worse, README), so its residual,
   // the Jacobians and Odeint keep the reference forms, to the bit as before.
   const bool reference = flow_y_ == nullptr;
+  if (!record && ring_lanes_apply()) {  // all rings at once, the same bits (polygon_ring_lanes.cpp)
+    central_difference_ring_lanes(y, phi, tally);
+    return;
+  }
   for (int r = 0; r < n_rings_; ++r) {
     gather_ring(r, y, velocities);
     if (reference)
@@ -177,10 +181,7 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
     }
     // The central difference: moments with the flow update and bar forces in two short
     // loops (polygon_flow_update.cpp), node forces gathered; the reference forms below.
-    if (!reference) {
-      central_difference_ring_laws(r, tally);
-      ring_node_forces();
-    }
+    if (!reference) central_difference_ring_laws(r, tally);
     if (reference)
     for (const int k : ring_bars_) {
       const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
