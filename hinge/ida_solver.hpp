@@ -49,7 +49,7 @@ struct IdaOptions {
     double growth_threshold = 0.0;
     double hold_floor = 0.0;
     double growth_max = 0.0;
-  } step_growth;
+  } step_growth{};
 };
 
 struct IdaStatistics {
