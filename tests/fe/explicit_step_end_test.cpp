@@ -117,14 +117,21 @@ TEST(ExplicitStepEnd, ChainForceSumInOnePassIsTheSeparateSums) {
     RecordingEnd end(n);
     finish_chain_force(parts, contributions, end);
     EXPECT_TRUE(bitwise_equal(f, f_ref)) << "round " << round;
-    if (viscous) EXPECT_TRUE(bitwise_equal(q, q_ref)) << "round " << round;
+    if (viscous) {
+      EXPECT_TRUE(bitwise_equal(q, q_ref)) << "round " << round;
+    }
     EXPECT_TRUE(std::all_of(end.seen.begin(), end.seen.end(), [](int s) { return s == 1; })) << "round " << round;
     EXPECT_TRUE(bitwise_equal(end.f, f_ref)) << "round " << round;
-    if (viscous) EXPECT_TRUE(bitwise_equal(end.q, q_ref)) << "round " << round;
-    else EXPECT_TRUE(end.q.array().isNaN().all()) << "round " << round;  // no q handed on
+    if (viscous) {
+      EXPECT_TRUE(bitwise_equal(end.q, q_ref)) << "round " << round;
+    } else {
+      EXPECT_TRUE(end.q.array().isNaN().all()) << "round " << round;  // no q handed on
+    }
     // The helper's buffer is +0.0 only where a contribution touched its range.
     for (Eigen::Index i = 0; i < n; ++i)
-      if (fh_buffer(i) != fh(i)) EXPECT_TRUE(fh_buffer(i) == 0.0 && !std::signbit(fh_buffer(i))) << i;
+      if (fh_buffer(i) != fh(i)) {
+        EXPECT_TRUE(fh_buffer(i) == 0.0 && !std::signbit(fh_buffer(i))) << i;
+      }
   }
   EXPECT_GT(reordered_differs, 10);
 }
@@ -187,8 +194,11 @@ TEST(ExplicitStepEnd, RangesInAnyOrderAreThePlainPass) {
     EXPECT_NEAR(0.5 * end.mass_v2, ke_ref, 1e-13 * ke_ref) << viscous;
     EXPECT_NEAR(fused.force_work, ref.force_work, 1e-13 * (scale_work + scale_viscous)) << viscous;
     EXPECT_NEAR(fused.viscous_work, ref.viscous_work, 1e-13 * scale_viscous) << viscous;
-    if (viscous == 0) EXPECT_EQ(fused.viscous_work, 0.0);
-    else EXPECT_GT(std::abs(fused.viscous_work), 1e-6 * scale_viscous);
+    if (viscous == 0) {
+      EXPECT_EQ(fused.viscous_work, 0.0);
+    } else {
+      EXPECT_GT(std::abs(fused.viscous_work), 1e-6 * scale_viscous);
+    }
   }
   // A non-finite force is seen, wherever it lies.
   for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
