@@ -23,6 +23,7 @@
 #include "fe/element/cps8_force_lanes.hpp"
 #include "fe/contact/penalty_step_cap.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
+#include "fe/dynamics/explicit_step_end.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
 #include "fe/material/j2_plane_stress.hpp"

@@ -20,9 +20,10 @@
 #include <vector>
 
 #include "fe/assembly/sparse_system.hpp"
-#include "fe/dynamics/explicit_step_end.hpp"
 
 namespace ringcrush::fe {
+
+struct ExplicitStepEnd;  // explicit_step_end.hpp
 
 struct SystemEvaluation {
   Eigen::VectorXd force;          // f(u): internal + contact, all dofs
@@ -64,11 +65,7 @@ class DynamicSystem {
   // every dof with its final force. A system may instead run `end` inside its own final force
   // sum, on each dof once its force is final, in any order of the dofs (ChainModel does: one
   // pass over the vectors instead of several, on the serial tail of the two-thread step).
-  virtual void evaluate_explicit(const Eigen::VectorXd& u, SystemEvaluation& out, ExplicitStepEnd& end) {
-    evaluate(u, false, out);
-    end.range(0, out.force.size(), out.force.data(),
-              out.viscous_force.size() == out.force.size() ? out.viscous_force.data() : nullptr);
-  }
+  virtual void evaluate_explicit(const Eigen::VectorXd& u, SystemEvaluation& out, ExplicitStepEnd& end);
   // commit(u) where the caller guarantees that the last evaluate() was at u, and u has not
   // changed since (the explicit driver commits the u it has just evaluated): a system may skip
   // its own test of that (ChainModel: the whole-vector comparison). Default: commit(u).

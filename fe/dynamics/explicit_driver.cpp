@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fe/dynamics/explicit_step_end.hpp"
 #include "fe/time/static_driver.hpp"  // SolveFailure
 
 namespace ringcrush::fe {
