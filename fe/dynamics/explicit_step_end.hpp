@@ -70,18 +70,21 @@ struct ExplicitStepEnd {
 
   template <bool Viscous>
   void run(Eigen::Index b, Eigen::Index e, const double* f, const double* q, const double* q_old) {
+    // Local copies: the stores below may alias the members as far as the compiler knows.
+    const double *inv_m = inv_mass, *m = mass, *f_old = old_force, *inc = increment;
+    double *acc = acceleration, *vel = velocity;
     const Pair h = {half_step, half_step};
     Pair nf[2] = {}, kin[2] = {}, work[2] = {}, visc[2] = {};
     auto pair = [&](Eigen::Index i, int k) {
       const Pair fi = load(f + i);
       nf[k] += fi - fi;
-      const Pair a = -(load(inv_mass + i) * fi);
-      store(acceleration + i, a);
-      const Pair v = load(velocity + i) + h * a;
-      store(velocity + i, v);
-      kin[k] += v * v * load(mass + i);
-      const Pair du = load(increment + i);
-      work[k] += (load(old_force + i) + fi) * du;
+      const Pair a = -(load(inv_m + i) * fi);
+      store(acc + i, a);
+      const Pair v = load(vel + i) + h * a;
+      store(vel + i, v);
+      kin[k] += v * v * load(m + i);
+      const Pair du = load(inc + i);
+      work[k] += (load(f_old + i) + fi) * du;
       if constexpr (Viscous) visc[k] += (load(q_old + i) + load(q + i)) * du;
     };
     Eigen::Index i = b;
