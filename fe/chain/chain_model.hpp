@@ -35,7 +35,11 @@
 //    rigid faces' contact and keeps the candidate list, then both threads deal the passes —
 //    the caller passes first, the helper elements first — and the caller sums the passes in
 //    their serial order, SurfaceContact::finish); the results are bitwise those of one thread.
-//    SystemEvaluation::contact_time_s is then the caller's part of the contact only.
+//    SystemEvaluation::contact_time_s is then the caller's part of the contact only;
+//  - the last sums of the force (the helper's half, the contact, the bulk viscosity) are one
+//    pass over the dofs on the caller, bitwise the separate sums (chain_force_sum.hpp), and
+//    evaluate_explicit() runs the explicit driver's step end in it (explicit_step_end.hpp);
+//    commit_evaluated() is commit() without the comparison of u with the evaluated one.
 #pragma once
 
 #include <Eigen/Core>
