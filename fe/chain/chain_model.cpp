@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "fe/chain/chain_force_sum.hpp"
 #include "fe/chain/chain_mesh.hpp"
 #include "fe/chain/geometry_update.hpp"
 #include "fe/contact/self_contact_taper.hpp"
@@ -22,6 +23,7 @@
 #include "fe/element/cps8_force_lanes.hpp"
 #include "fe/contact/penalty_step_cap.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
+#include "fe/dynamics/explicit_step_end.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
 #include "fe/material/j2_plane_stress.hpp"
@@ -608,15 +610,33 @@ Eigen::VectorXd ChainModel::initial_velocity() const {
 }
 
 void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) {
+  evaluate_ending(u, want_tangent, out, nullptr);
+}
+
+void ChainModel::evaluate_explicit(const Eigen::VectorXd& u, SystemEvaluation& out, ExplicitStepEnd& end) {
+  evaluate_ending(u, false, out, &end);
+}
+
+void ChainModel::evaluate_ending(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out,
+                                 ExplicitStepEnd* end) {
   Impl& m = *impl_;
   if (u.size() != dofs()) throw std::invalid_argument(fmt::format("ChainModel::evaluate: u has {} values, expected {}", u.size(), dofs()));
+  // Until this evaluation is complete the trial states are those of no u (commit() re-evaluates).
+  m.trial_fresh = false;
   double contact_energy = 0, contact_time = 0;
   // --- contact (the rigid faces and the list on the calling thread, while the helper runs
   // elements; the passes' searches dealt to both threads; the sums on the caller) ----------
   auto contact_begin = [&] {
     const auto t0 = std::chrono::steady_clock::now();
+    // The evaluated u is kept for commit() (u_last) in the same pass over u as the coordinates
+    // (here the helper is computing elements, not at the serial end of the step).
     const std::size_t nn = mesh_.nodes.size();
-    for (std::size_t i = 0; i < nn; ++i) m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(u(2 * i), u(2 * i + 1));
+    for (std::size_t i = 0; i < nn; ++i) {
+      const double ux = u(2 * i), uy = u(2 * i + 1);
+      m.x[i] = mesh_.nodes[i] + Eigen::Vector2d(ux, uy);
+      m.u_last(2 * i) = ux;
+      m.u_last(2 * i + 1) = uy;
+    }
     m.contributions.clear();
     m.pressure.clear();
     ChainContactForces& cf = m.forces;
@@ -790,25 +810,25 @@ void ChainModel::evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEva
     m.elements(m.split, ne, u, want_tangent, false, m.helper_force.data(), viscous ? m.helper_viscous.data() : nullptr,
                helper_elastic, helper_plastic);
   }
-  out.force.segment(m.helper_lo, m.helper_len) += m.helper_force.segment(m.helper_lo, m.helper_len);
   elastic += helper_elastic;
   plastic += helper_plastic;
-  for (const auto& c : m.contributions) {
-    for (int a = 0; a < c.count; ++a) {
-      out.force(2 * c.nodes[a]) += c.force(2 * a);
-      out.force(2 * c.nodes[a] + 1) += c.force(2 * a + 1);
-    }
-    if (want_tangent) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
-  }
-  if (viscous) {
-    out.viscous_force.segment(m.helper_lo, m.helper_len) += m.helper_viscous.segment(m.helper_lo, m.helper_len);
-    out.force += out.viscous_force;
+  if (want_tangent)
+    for (const auto& c : m.contributions) m.system->add_nodes(c.nodes.data(), c.count, c.tangent.data(), 12);
+  // The two halves, the contact and the bulk viscosity summed in one pass, bitwise the
+  // separate sums (chain_force_sum.hpp), with the explicit step's end on each finished block.
+  const ChainForceParts parts{out.force.data(), m.helper_force.data(), q_main,
+                              viscous ? m.helper_viscous.data() : nullptr, out.force.size(), m.helper_lo,
+                              m.helper_len};
+  if (end) {
+    finish_chain_force(parts, m.contributions, *end);
+  } else {
+    NoForceEnd none;
+    finish_chain_force(parts, m.contributions, none);
   }
   out.elastic_energy = elastic;
   out.plastic_work = plastic;
   out.contact_energy = contact_energy;
   out.contact_time_s = contact_time;
-  m.u_last = u;
   m.trial_fresh = true;
 }
 
@@ -817,6 +837,18 @@ void ChainModel::commit(const Eigen::VectorXd& u) {
   // The trial states must be those of u (a driver may have evaluated elsewhere since, e.g.
   // the half-step residual of thesis §3.5).
   if (!m.trial_fresh || m.u_last.size() != u.size() || m.u_last != u) evaluate(u, false, m.scratch);
+  commit_trial();
+}
+
+void ChainModel::commit_evaluated(const Eigen::VectorXd& u) {
+  // The caller evaluated at u and has not changed it since, so the comparison of commit() is
+  // known to hold; an evaluation that did not complete is still re-done.
+  if (!impl_->trial_fresh || impl_->u_last.size() != u.size()) evaluate(u, false, impl_->scratch);
+  commit_trial();
+}
+
+void ChainModel::commit_trial() {
+  Impl& m = *impl_;
   std::swap(m.committed, m.trial);
   m.surface->commit();
   m.trial_fresh = false;

@@ -35,7 +35,11 @@
 //    rigid faces' contact and keeps the candidate list, then both threads deal the passes —
 //    the caller passes first, the helper elements first — and the caller sums the passes in
 //    their serial order, SurfaceContact::finish); the results are bitwise those of one thread.
-//    SystemEvaluation::contact_time_s is then the caller's part of the contact only.
+//    SystemEvaluation::contact_time_s is then the caller's part of the contact only;
+//  - the last sums of the force (the helper's half, the contact, the bulk viscosity) are one
+//    pass over the dofs on the caller, bitwise the separate sums (chain_force_sum.hpp), and
+//    evaluate_explicit() runs the explicit driver's step end in it (explicit_step_end.hpp);
+//    commit_evaluated() is commit() without the comparison of u with the evaluated one.
 #pragma once
 
 #include <Eigen/Core>
@@ -106,6 +110,10 @@ class ChainModel final : public DynamicSystem {
   Eigen::VectorXd initial_velocity() const override;
   void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) override;
   void commit(const Eigen::VectorXd& u) override;
+  // The step's end inside the final force sum (chain_force_sum.hpp), bitwise evaluate()'s force.
+  void evaluate_explicit(const Eigen::VectorXd& u, SystemEvaluation& out, ExplicitStepEnd& end) override;
+  // commit(u) without comparing u with the evaluated displacement (the caller guarantees it).
+  void commit_evaluated(const Eigen::VectorXd& u) override;
   SparseSystem& tangent_system() override;
   StableStep stable_step(const Eigen::VectorXd& u) const override;
   StableStep contact_stable_step(const Eigen::VectorXd& u) const override;
@@ -156,6 +164,10 @@ class ChainModel final : public DynamicSystem {
   std::vector<double> max_peeq_per_ring() const;
 
  private:
+  // evaluate(), with the explicit step's end run in the final force sum (null: none).
+  void evaluate_ending(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out, ExplicitStepEnd* end);
+  // commit() once the trial states are known to be those of u.
+  void commit_trial();
   struct Impl;
   ChainInput input_;
   ChainMesh mesh_;

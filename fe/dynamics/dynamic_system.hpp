@@ -23,6 +23,8 @@
 
 namespace ringcrush::fe {
 
+struct ExplicitStepEnd;  // explicit_step_end.hpp
+
 struct SystemEvaluation {
   Eigen::VectorXd force;          // f(u): internal + contact, all dofs
   double elastic_energy = 0;      // recoverable strain energy (J)
@@ -57,6 +59,17 @@ class DynamicSystem {
   // explicit driver hands back its previous step's buffers).
   virtual void evaluate(const Eigen::VectorXd& u, bool want_tangent, SystemEvaluation& out) = 0;
   virtual void commit(const Eigen::VectorXd& u) = 0;
+
+  // The explicit driver's evaluation: evaluate(u, false, out), then the step's end
+  // (explicit_step_end.hpp: a = −M⁻¹f, v += ½Δt a, the finiteness test, the energy sums) over
+  // every dof with its final force. A system may instead run `end` inside its own final force
+  // sum, on each dof once its force is final, in any order of the dofs (ChainModel does: one
+  // pass over the vectors instead of several, on the serial tail of the two-thread step).
+  virtual void evaluate_explicit(const Eigen::VectorXd& u, SystemEvaluation& out, ExplicitStepEnd& end);
+  // commit(u) where the caller guarantees that the last evaluate() was at u, and u has not
+  // changed since (the explicit driver commits the u it has just evaluated): a system may skip
+  // its own test of that (ChainModel: the whole-vector comparison). Default: commit(u).
+  virtual void commit_evaluated(const Eigen::VectorXd& u) { commit(u); }
   virtual SparseSystem& tangent_system() = 0;
 
   // Bound on the highest frequency at displacement u (element eigenvalue inequality plus

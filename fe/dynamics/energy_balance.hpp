@@ -86,6 +86,15 @@ struct EnergyBalance {
     force_work -= w;
     viscous_work += w;
   }
+  // The same from the sums Σ (f_n + f_{n+1})·Δu and Σ (q_n + q_{n+1})·Δu formed elsewhere (the
+  // explicit step's end, explicit_step_end.hpp: in another order than the dot products above,
+  // so the two differ in round-off only).
+  void add_step_sums(double force_du, double viscous_du) {
+    force_work += 0.5 * force_du;
+    const double w = 0.5 * viscous_du;
+    force_work -= w;
+    viscous_work += w;
+  }
 };
 
 }  // namespace ringcrush::fe

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fe/dynamics/explicit_step_end.hpp"
 #include "fe/time/static_driver.hpp"  // SolveFailure
 
 namespace ringcrush::fe {
@@ -126,29 +127,31 @@ void ExplicitDriver::step(double t_limit) {
   f_old_.swap(ev_.force);
   q_old_.swap(ev_.viscous_force);
   sys_.set_increment_time(dt_);  // rate-dependent (bulk-viscous) forces: ε̇ = Δε/Δt
-  sys_.evaluate(u_, false, ev_);
+  // a = −M⁻¹ f, the second half-step of v, the finiteness test of f and the step's energy sums,
+  // dof by dof as the system finishes each force (explicit_step_end.hpp; one pass over the
+  // vectors on the serial tail of the two-thread step, README "FE dynamics").
+  if (a_.size() != n) a_.resize(n);
+  if (zeros_.size() != n) zeros_.setZero(n);
+  ExplicitStepEnd end;
+  end.inv_mass = inv_mass_.data();
+  end.mass = m.data();
+  end.velocity = v_.data();
+  end.acceleration = a_.data();
+  end.old_force = f_old_.data();
+  end.old_viscous = q_old_.size() == n ? q_old_.data() : nullptr;
+  end.zeros = zeros_.data();
+  end.increment = du_.data();
+  end.half_step = half;
+  sys_.evaluate_explicit(u_, ev_, end);
   ++evaluations_;
   contact_time_ += ev_.contact_time_s;
-  // a = −M⁻¹ f and the second half-step of v in one pass, with the finiteness test of f
-  // folded in (f − f is 0 for a finite f, NaN otherwise); the dof is looked for only when it
-  // fails.
-  if (a_.size() != n) a_.resize(n);
-  double not_finite = 0;
-  {
-    double *v = v_.data(), *a = a_.data();
-    const double *f = ev_.force.data(), *inv_m = inv_mass_.data();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      not_finite += f[i] - f[i];
-      a[i] = -(inv_m[i] * f[i]);
-      v[i] += half * a[i];
-    }
-  }
-  if (!(not_finite == 0)) {
+  // The dof is looked for only when the test fails.
+  if (!(end.not_finite == 0)) {
     int bad = 0;
     while (bad + 1 < ev_.force.size() && std::isfinite(ev_.force(bad))) ++bad;
     fail("non-finite internal force (the integration has blown up)", bad);
   }
-  sys_.commit(u_);
+  sys_.commit_evaluated(u_);  // the u just evaluated
   t_ += dt_;
   ++steps_;
   if (below_target_ && opt_.fixed_step_s == 0) ++steps_below_target_;
@@ -156,8 +159,8 @@ void ExplicitDriver::step(double t_limit) {
   min_dt_ = steps_ == 1 ? dt_ : std::min(min_dt_, dt_);
   max_dt_ = std::max(max_dt_, dt_);
 
-  energy_.add_step(f_old_, ev_.force, q_old_, ev_.viscous_force, du_);
-  energy_.set_state(EnergyBalance::kinetic_energy(m, v_), ev_);
+  energy_.add_step_sums(end.force_du, end.viscous_du);
+  energy_.set_state(0.5 * end.mass_v2, ev_);
   // A conservative system cannot gain kinetic energy beyond what it started with: growth is
   // the central-difference instability (Δt > 2/ω_max), caught before any NaN appears.
   if (!std::isfinite(energy_.kinetic) || energy_.kinetic > opt_.blowup_energy_factor * energy_.reference()) {

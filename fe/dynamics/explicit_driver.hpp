@@ -92,6 +92,7 @@ class ExplicitDriver {
   ExplicitOptions opt_;
   Eigen::VectorXd inv_mass_;  // 1/M on free dofs, 0 on fixed ones
   Eigen::VectorXd u_, v_, a_, du_, f_old_, q_old_;
+  Eigen::VectorXd zeros_;  // the missing q_n of the first step (ExplicitStepEnd::zeros)
   SystemEvaluation ev_;
   EnergyBalance energy_;
   double t_ = 0, dt_ = 0, dt_stable_ = 0, dt_target_ = 0;
