@@ -1,6 +1,7 @@
 // Scene loading: every shipped scene is valid, and each class of bad input is rejected with
 // an error that names the file, the key and the reason.
 #include "compare/scene.hpp"
+#include "minimal_scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,29 +17,7 @@ namespace {
 const fs::path scenes = fs::path(RINGCRUSH_SOURCE_DIR) / "data" / "scenes";
 
 // A minimal valid dynamic scene; tests edit one line of it.
-const std::string base = R"(
-title = "unit"
-[rings]
-count = 2
-outer_diameter_m = 0.0508
-wall_thickness_m = 0.0016
-width_m = 0.0125
-[rings.material]
-youngs_modulus_Pa = 202e9
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-hardening = [[273e6, 0.0], [320e6, 0.02113]]
-[joints]
-type = "welded"
-[impactor]
-mass_kg = 0.257
-velocity_m_s = 27.7
-[far_end]
-type = "fixed"
-[analysis]
-type = "dynamic"
-end_time_s = 0.05
-)";
+const std::string base = test_scenes::minimal_dynamic;
 
 std::string with(const std::string& from, const std::string& to) {
   const auto pos = base.find(from);

@@ -34,17 +34,7 @@ std::vector<double> lifted_state(const PolygonChain& chain) {
   return y;
 }
 
-// Node velocity rows of the state, axis nodes' x left out (held at 0 by the symmetry plane).
-std::vector<std::size_t> velocity_rows(const PolygonChain& chain) {
-  std::vector<std::size_t> rows;
-  const bool half = chain.input().half_symmetry;
-  for (int j = 0; j < chain.independent_nodes(); ++j) {
-    const auto o = chain.node_offset(0, j);
-    if (!(half && (j == 0 || j == chain.independent_nodes() - 1))) rows.push_back(o + 2);
-    rows.push_back(o + 3);
-  }
-  return rows;
-}
+using two_ring_chain::velocity_rows;
 
 // C read off the explicit damper forces: φ is linear in the node velocities through the
 // dampers alone here, so column m is −(φ(v = e_m) − φ(0)) on the velocity rows.

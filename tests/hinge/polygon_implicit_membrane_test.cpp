@@ -18,6 +18,7 @@
 
 #include "compare/hinge_run_2d.hpp"
 #include "compare/scene.hpp"
+#include "minimal_scene.hpp"
 #include "hinge/polygon_central_difference.hpp"
 #include "hinge/polygon_simulation.hpp"
 #include "hinge/polygon_stiffness_spectrum.hpp"
@@ -62,16 +63,7 @@ std::vector<double> moving_state(const PolygonChain& chain, double noise) {
   return y;
 }
 
-std::vector<std::size_t> velocity_rows(const PolygonChain& chain) {
-  std::vector<std::size_t> rows;
-  const bool half = chain.input().half_symmetry;
-  for (int j = 0; j < chain.independent_nodes(); ++j) {
-    const auto o = chain.node_offset(0, j);
-    if (!(half && (j == 0 || j == chain.independent_nodes() - 1))) rows.push_back(o + 2);
-    rows.push_back(o + 3);
-  }
-  return rows;
-}
+using two_ring_chain::velocity_rows;
 
 double ring_energy(PolygonChain& chain, const std::vector<double>& y) {
   const auto e = chain.energies(0.0, y.data());
@@ -350,29 +342,7 @@ TEST(PolygonImplicitMembrane, BadInputIsNamed) {
     EXPECT_THROW(chain.ring_damper_membrane_step(y.data(), h, v.data(), d.data()), std::invalid_argument);
 
   using namespace ringcrush::compare;
-  const std::string scene = R"(
-title = "unit"
-[rings]
-count = 2
-outer_diameter_m = 0.0508
-wall_thickness_m = 0.0016
-width_m = 0.0125
-[rings.material]
-youngs_modulus_Pa = 202e9
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-hardening = [[273e6, 0.0], [320e6, 0.02113]]
-[joints]
-type = "welded"
-[impactor]
-mass_kg = 0.257
-velocity_m_s = 27.7
-[far_end]
-type = "fixed"
-[analysis]
-type = "dynamic"
-end_time_s = 0.05
-[hinge]
+  const std::string scene = test_scenes::minimal_dynamic + R"([hinge]
 level = 2
 integrator = "central_difference"
 )";

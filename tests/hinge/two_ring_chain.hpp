@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
+#include <vector>
 
 #include "hinge/polygon_chain.hpp"
 
@@ -37,6 +39,19 @@ inline double crush(const PolygonShape& s, int ring, const PolygonChainInput& in
     hi = std::max(hi, p[1]);
   }
   return in.outer_diameter_m - (hi - lo + in.wall_thickness_m);
+}
+
+// Ring 1's node velocity rows of the state, the axis nodes' x left out (held at 0 by the
+// symmetry plane in a half model): the rows the implicit damper and membrane solves act on.
+inline std::vector<std::size_t> velocity_rows(const PolygonChain& chain) {
+  std::vector<std::size_t> rows;
+  const bool half = chain.input().half_symmetry;
+  for (int j = 0; j < chain.independent_nodes(); ++j) {
+    const auto o = chain.node_offset(0, j);
+    if (!(half && (j == 0 || j == chain.independent_nodes() - 1))) rows.push_back(o + 2);
+    rows.push_back(o + 3);
+  }
+  return rows;
 }
 
 }  // namespace ringcrush::hinge::two_ring_chain
