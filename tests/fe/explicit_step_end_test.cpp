@@ -153,6 +153,20 @@ TEST(ExplicitStepEnd, RangesInAnyOrderAreThePlainPass) {
   }
   const double half = 2.5e-8;
   const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(n);
+  // A step end over these dofs writing v and a (old viscous force: null for none).
+  auto step_end = [&](Eigen::VectorXd& v, Eigen::VectorXd& a, const double* old_viscous) {
+    ExplicitStepEnd end;
+    end.inv_mass = inv_mass.data();
+    end.mass = mass.data();
+    end.velocity = v.data();
+    end.acceleration = a.data();
+    end.old_force = f_old.data();
+    end.old_viscous = old_viscous;
+    end.zeros = zeros.data();
+    end.increment = du.data();
+    end.half_step = half;
+    return end;
+  };
   for (int viscous = 0; viscous < 3; ++viscous) {  // none; q_n and q_{n+1}; q_{n+1} only (first step)
     // The plain pass of the driver before session 13, and the energy sums of EnergyBalance.
     Eigen::VectorXd v_ref = v0, a_ref(n);
@@ -172,16 +186,7 @@ TEST(ExplicitStepEnd, RangesInAnyOrderAreThePlainPass) {
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), rng);
     Eigen::VectorXd v = v0, a = Eigen::VectorXd::Constant(n, 7.0);
-    ExplicitStepEnd end;
-    end.inv_mass = inv_mass.data();
-    end.mass = mass.data();
-    end.velocity = v.data();
-    end.acceleration = a.data();
-    end.old_force = f_old.data();
-    end.old_viscous = viscous == 1 ? q_old.data() : nullptr;
-    end.zeros = zeros.data();
-    end.increment = du.data();
-    end.half_step = half;
+    ExplicitStepEnd end = step_end(v, a, viscous == 1 ? q_old.data() : nullptr);
     for (std::size_t k : order) end.range(cuts[k], cuts[k + 1], f.data(), viscous > 0 ? q.data() : nullptr);
     EXPECT_TRUE(bitwise_equal(a, a_ref)) << viscous;
     EXPECT_TRUE(bitwise_equal(v, v_ref)) << viscous;
@@ -204,15 +209,7 @@ TEST(ExplicitStepEnd, RangesInAnyOrderAreThePlainPass) {
   for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     Eigen::VectorXd f_bad = f, v = v0, a(n);
     f_bad(n - 2) = bad;
-    ExplicitStepEnd end;
-    end.inv_mass = inv_mass.data();
-    end.mass = mass.data();
-    end.velocity = v.data();
-    end.acceleration = a.data();
-    end.old_force = f_old.data();
-    end.zeros = zeros.data();
-    end.increment = du.data();
-    end.half_step = half;
+    ExplicitStepEnd end = step_end(v, a, nullptr);
     end.range(500, n, f_bad.data(), nullptr);
     end.range(0, 500, f_bad.data(), nullptr);
     EXPECT_FALSE(end.not_finite == 0);
