@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,28 +19,44 @@ HardeningTable::HardeningTable(std::vector<HardeningPoint> points) : points_(std
     if (i > 0 && !(points_[i].plastic_strain > points_[i - 1].plastic_strain))
       throw std::invalid_argument("hardening table: plastic strains must increase");
   }
-}
-
-double HardeningTable::yield_stress(double a) const {
-  if (a <= 0.0) return points_.front().yield_stress_pa;
+  min_yield_ = points_.front().yield_stress_pa;
   for (std::size_t i = 1; i < points_.size(); ++i) {
     const auto& p = points_[i - 1];
     const auto& q = points_[i];
-    if (a < q.plastic_strain)
-      return p.yield_stress_pa + (q.yield_stress_pa - p.yield_stress_pa) * (a - p.plastic_strain) /
-                                     (q.plastic_strain - p.plastic_strain);
+    rise_.push_back(q.yield_stress_pa - p.yield_stress_pa);
+    run_.push_back(q.plastic_strain - p.plastic_strain);
+    slope_.push_back(rise_.back() / run_.back());
+    min_yield_ = std::min(min_yield_, q.yield_stress_pa);
   }
+}
+
+// The segment formulas below are the ones of the first version of the table (rise · (ᾱ − ᾱ_i)
+// / run, rise / run): the tabulated differences are the values it formed per call, so every
+// result is bitwise unchanged (tests/fe/j2_return_map_bitwise_test.cpp).
+double HardeningTable::yield_stress(double a) const {
+  if (a <= 0.0) return points_.front().yield_stress_pa;
+  for (std::size_t i = 1; i < points_.size(); ++i)
+    if (a < points_[i].plastic_strain)
+      return points_[i - 1].yield_stress_pa + rise_[i - 1] * (a - points_[i - 1].plastic_strain) / run_[i - 1];
   return points_.back().yield_stress_pa;
 }
 
 double HardeningTable::slope(double a) const {
-  for (std::size_t i = 1; i < points_.size(); ++i) {
-    const auto& p = points_[i - 1];
-    const auto& q = points_[i];
-    if (a < q.plastic_strain)
-      return (q.yield_stress_pa - p.yield_stress_pa) / (q.plastic_strain - p.plastic_strain);
-  }
+  for (std::size_t i = 1; i < points_.size(); ++i)
+    if (a < points_[i].plastic_strain) return slope_[i - 1];
   return 0.0;
+}
+
+void HardeningTable::yield_stress_and_slope(double a, double& sy, double& h) const {
+  for (std::size_t i = 1; i < points_.size(); ++i)
+    if (a < points_[i].plastic_strain) {
+      sy = a <= 0.0 ? points_.front().yield_stress_pa
+                    : points_[i - 1].yield_stress_pa + rise_[i - 1] * (a - points_[i - 1].plastic_strain) / run_[i - 1];
+      h = slope_[i - 1];
+      return;
+    }
+  sy = a <= 0.0 ? points_.front().yield_stress_pa : points_.back().yield_stress_pa;
+  h = 0.0;
 }
 
 J2PlaneStress::J2PlaneStress(const MaterialInput& m)
@@ -51,6 +68,11 @@ J2PlaneStress::J2PlaneStress(const MaterialInput& m)
   c_ << f, f * nu_, 0, f * nu_, f, 0, 0, 0, g_;
   c_inv_ = c_.inverse();
   p_ << 2.0 / 3.0, -1.0 / 3.0, 0, -1.0 / 3.0, 2.0 / 3.0, 0, 0, 0, 2.0;
+  // 1/d1², 1/d2² at Δγ₀ = 1/(2G), with d1, d2 as return_map() forms them there.
+  const double c1 = e_ / (3.0 * (1.0 - nu_)), c2 = 2.0 * g_, dg0 = 1.0 / c2;
+  const double d1 = 1.0 + c1 * dg0, d2 = 1.0 + c2 * dg0;
+  bracket_k1_ = 1.0 / (d1 * d1);
+  bracket_k2_ = 1.0 / (d2 * d2);
 }
 
 double mises(const Vec3& s) {
@@ -107,17 +129,29 @@ J2Update J2PlaneStress::return_map(const Vec3& strain_increment, const PointStat
     const double sxi = std::sqrt(xi);
     const double alpha = committed.peeq + sq23 * dg * sxi;
     const double dalpha = sq23 * (sxi + dg * dxi / (2.0 * sxi));
-    const double sy = table_.yield_stress(alpha);
-    df = 0.5 * dxi - 2.0 / 3.0 * sy * table_.slope(alpha) * dalpha;
+    double sy, h;
+    table_.yield_stress_and_slope(alpha, sy, h);
+    df = 0.5 * dxi - 2.0 / 3.0 * sy * h * dalpha;
     return 0.5 * xi - sy * sy / 3.0;
   };
 
-  // Bracket [lo, hi] with f(lo) > 0 > f(hi).
+  // Bracket [lo, hi] with f(lo) > 0 > f(hi). f(1/c2) need not be evaluated where a bound shows
+  // it negative: ξ(1/c2) = k1 a1 + k2 a2 (to rounding) and σy ≥ its table minimum, so with a
+  // margin far above rounding (1e-9 relative) the evaluated f(1/c2) is negative and the loop
+  // below would have stopped at once, hi unchanged (and its df is overwritten below).
   double lo = 0.0, hi = 1.0 / c2, df = 0.0;
-  while (residual(hi, df) > 0.0) hi *= 2.0;
+  const double sy_min = table_.min_yield_stress();
+  if (!(0.5 * (bracket_k1_ * a1 + bracket_k2_ * a2) * (1.0 + 1e-9) < sy_min * sy_min / 3.0 * (1.0 - 1e-9)))
+    while (residual(hi, df) > 0.0) hi *= 2.0;
   double dg = 0.0;
   double f = f_trial;
-  residual(dg, df);
+  // f′(0), as residual(0) forms it: at Δγ = 0, d1 = d2 = 1 exactly, ᾱ = ᾱ_n (σy = sy_n) and
+  // dᾱ/dΔγ = √(2/3) √ξ_0 (the Δγ ξ′ term is a signed zero), so only the slope is looked up.
+  {
+    const double dxi0 = -2.0 * a1 * c1 - 2.0 * a2 * c2;
+    const double dalpha0 = sq23 * std::sqrt(a1 + a2);
+    df = 0.5 * dxi0 - 2.0 / 3.0 * sy_n * table_.slope(committed.peeq) * dalpha0;
+  }
   const double ftol = 1e-14 * sy_n * sy_n;
   for (int it = 0; it < 200; ++it) {
     double next = dg - f / df;
@@ -133,12 +167,15 @@ J2Update J2PlaneStress::return_map(const Vec3& strain_increment, const PointStat
   const Vec3 ps = p_ * s;
   const double xi = s.dot(ps);
   const double alpha = committed.peeq + sq23 * dg * std::sqrt(xi);
-  const double h = table_.slope(alpha);
-  const Vec3 n = xi_mat * ps;
-  const double beta = 2.0 / 3.0 * h * xi / (1.0 - 2.0 / 3.0 * h * dg);
   out.stress = s;
-  if (want_tangent) out.tangent = xi_mat - n * n.transpose() / (ps.dot(n) + beta);
-  else out.tangent.setZero();  // not computed
+  if (want_tangent) {
+    const double h = table_.slope(alpha);
+    const Vec3 n = xi_mat * ps;
+    const double beta = 2.0 / 3.0 * h * xi / (1.0 - 2.0 / 3.0 * h * dg);
+    out.tangent = xi_mat - n * n.transpose() / (ps.dot(n) + beta);
+  } else {
+    out.tangent.setZero();  // not computed
+  }
   out.plastic = true;
   out.plastic_increment = dg * ps;
   out.peeq = alpha;

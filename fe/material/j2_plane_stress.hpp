@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "fe/fe_input.hpp"
@@ -35,9 +36,22 @@ class HardeningTable {
   // Slope of the segment that holds `peeq` (right derivative at a break point); 0 beyond
   // the last point.
   double slope(double peeq) const;
+  // yield_stress(peeq) and slope(peeq) from one search of the table, bitwise the two calls
+  // (the return mapping's Newton iteration needs both at every iterate).
+  void yield_stress_and_slope(double peeq, double& sy, double& h) const;
+  // The smallest yield stress of the table (σy is piecewise linear: its minimum is at a point).
+  double min_yield_stress() const { return min_yield_; }
+  const std::vector<HardeningPoint>& points() const { return points_; }
+  // Segment i (points i, i + 1): σy(i + 1) − σy(i) and ᾱ(i + 1) − ᾱ(i), the differences
+  // yield_stress() forms (tabulated: the same values, not formed per call; the lane kernel
+  // reads them too, cps8_force_lanes.cpp).
+  double rise(std::size_t i) const { return rise_[i]; }
+  double run(std::size_t i) const { return run_[i]; }
 
  private:
   std::vector<HardeningPoint> points_;
+  std::vector<double> rise_, run_, slope_;  // per segment; slope_ = rise_ / run_
+  double min_yield_ = 0.0;
 };
 
 struct J2Update {
@@ -77,6 +91,9 @@ class J2PlaneStress {
   double e_, nu_, g_;
   Mat3 c_, c_inv_, p_;
   HardeningTable table_;
+  // ξ(Δγ₀) = k1 a1 + k2 a2 at the first bracket end Δγ₀ = 1/(2G) (return_map: lets the bracket
+  // skip evaluating f(Δγ₀) where a bound shows it negative).
+  double bracket_k1_ = 0.0, bracket_k2_ = 0.0;
 };
 
 // Most points of an explicit step are elastic: the trial check and the elastic result are
