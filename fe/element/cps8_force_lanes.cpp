@@ -11,6 +11,7 @@
 
 #include "fe/element/element_lanes.hpp"
 #include "fe/element/geometry_lanes.hpp"
+#include "fe/element/hardening_lanes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -182,7 +183,6 @@ template <bool kShuffle, bool kFormGeometry>
   const Mat3& c_inv = material.elastic_compliance();
   const double c11 = c(0, 0), c12 = c(0, 1), shear = c(2, 2), inv_e = c_inv(0, 0), inv_e_nu = c_inv(0, 1);
   const double two_inv_e_nu = 2.0 * inv_e_nu, inv_g = c_inv(2, 2);
-  const double sy_virgin = material.hardening().yield_stress(0.0);  // σy(ᾱ ≤ 0), the table's first point
 
   Lanes force[16], viscous_force[16];
   for (int k = 0; k < 16; ++k) {
@@ -214,8 +214,7 @@ template <bool kShuffle, bool kFormGeometry>
       gather_transposed<kShuffle>(state, kHistoryAt, history);  // —, ᾱ, —, λ3
     }
     const Lanes sn0 = sn[0], sn1 = sn[1], sn2 = sn[2], thickness = history[3];
-    for (int l = 0; l < kCps8Lanes; ++l)
-      sy[l] = history[1][l] <= 0.0 ? sy_virgin : material.hardening().yield_stress(history[1][l]);
+    yield_stress_lanes(material.hardening(), history[1], sy);
     Lanes t0 = (sn0 + c11 * de0) + c12 * de1, t1 = (sn1 + c12 * de0) + c11 * de1, t2 = sn2 + shear * de2;
     const Lanes xi_trial = 2.0 / 3.0 * ((t0 * t0 + t1 * t1) - t0 * t1) + (2.0 * t2) * t2;
     const LaneMask elastic = 0.5 * xi_trial - (sy * sy) * (1.0 / 3.0) <= (1e-12 * sy) * sy;

@@ -25,9 +25,9 @@ using kernel_test::ElementResult;
 // Compares `kernel` with cps8_force() on `count` random elements (groups of 4, then the
 // remainder through cps8_force()); returns {points that yielded, points that stayed elastic}.
 std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool viscous, int count,
-                                       unsigned seed) {
+                                       unsigned seed, const MaterialInput& steel = kernel_test::thesis_steel()) {
   std::mt19937 rng(seed);
-  const J2PlaneStress material(kernel_test::thesis_steel());
+  const J2PlaneStress material(steel);
   std::vector<kernel_test::RandomElement> el;
   std::vector<Cps8Geometry> geo;
   for (int k = 0; k < count; ++k) {
@@ -74,12 +74,12 @@ std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool
   return branches;
 }
 
-void check_kernel(LaneKernel kernel) {
+void check_kernel(LaneKernel kernel, const MaterialInput& steel = kernel_test::thesis_steel()) {
   unsigned seed = 3;
   for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective})
     for (bool viscous : {false, true}) {
       SCOPED_TRACE(::testing::Message() << "rule " << static_cast<int>(rule) << ", viscous " << viscous);
-      const auto branches = compare_with_scalar(kernel, rule, viscous, 11, seed++);
+      const auto branches = compare_with_scalar(kernel, rule, viscous, 11, seed++, steel);
       EXPECT_GT(branches[0], 0);  // both material branches compared
       EXPECT_GT(branches[1], 0);
     }
@@ -99,6 +99,17 @@ TEST(Cps8ForceLanes, Avx2CopyIsBitwiseTheScalarKernel) {
 }
 
 TEST(Cps8ForceLanes, DispatchedKernelIsBitwiseTheScalarKernel) { check_kernel(&cps8_force_lanes); }
+
+// The lanes look σy(ᾱ_n) up on the vector (yield_stress_lanes, cps8_force_lanes.cpp): a table
+// of four points, softening at the end, with committed ᾱ (0 … 0.04) on every segment, at 0 and
+// beyond the last point, in both copies.
+TEST(Cps8ForceLanes, MultiSegmentHardeningIsBitwiseTheScalarKernel) {
+  if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
+  MaterialInput steel = kernel_test::thesis_steel();
+  steel.hardening = {{273e6, 0.0}, {290e6, 0.005}, {315e6, 0.015}, {300e6, 0.03}};
+  check_kernel(&cps8_force_lanes_portable, steel);
+  if (cps8_lanes_avx2_available()) check_kernel(&cps8_force_lanes_avx2, steel);
+}
 
 TEST(Cps8ForceLanes, RejectsMixedRules) {
   std::mt19937 rng(1);
