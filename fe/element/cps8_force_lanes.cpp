@@ -41,14 +41,19 @@ struct PointLanes {
   Lanes f00, f01, f10, f11;  // f
   Lanes s0, s1, s2;          // S (the material's stress of the increment)
   Lanes stretch;             // 1 + 2 ΔE33
+  Lanes history[5];          // trial plastic strain (3), ᾱ, plastic work: PointState's members 3 … 7
+  Lanes thickness;           // committed λ3
 };
 
-// A committed point state read as doubles (9 of them, in member order): from S_n the stress
-// and the first plastic strain, from the last plastic strain ᾱ, the plastic work and λ3.
+// A point state read and written as doubles (9 of them, in member order), four at a time:
+// from 0 the stress and the first plastic strain, from 4 the last two plastic strains, ᾱ and
+// the plastic work, from 5 the last plastic strain, ᾱ, the plastic work and λ3.
 static_assert(std::is_standard_layout_v<PointState> && sizeof(PointState) == 9 * sizeof(double));
 constexpr int kStressAt = offsetof(PointState, stress) / sizeof(double);
+constexpr int kStrainAt = offsetof(PointState, plastic_strain) / sizeof(double) + 1;
 constexpr int kHistoryAt = offsetof(PointState, plastic_strain) / sizeof(double) + 2;
-static_assert(kStressAt == 0 && kHistoryAt == 5 && offsetof(PointState, peeq) == 6 * sizeof(double) &&
+static_assert(kStressAt == 0 && kStrainAt == 4 && kHistoryAt == 5 && offsetof(PointState, peeq) == 6 * sizeof(double) &&
+              offsetof(PointState, plastic_work) == 7 * sizeof(double) &&
               offsetof(PointState, thickness_stretch) == 8 * sizeof(double));
 
 // ∂N/∂x and the point weights of the four elements from their Cps8Geometry, by 4 × 4
@@ -192,7 +197,7 @@ template <bool kShuffle, bool kFormGeometry>
                                (*lane[2].viscous->force)(k), (*lane[3].viscous->force)(k)};
   }
   Lanes elastic_energy{};
-  double plastic_work[kCps8Lanes] = {0, 0, 0, 0};
+  Lanes plastic_work{};
   PointLanes pt[9];
 
   for (int i = 0; i < np; ++i) {
@@ -206,11 +211,12 @@ template <bool kShuffle, bool kFormGeometry>
       de1 += corr;
     }
     // Material: elastic trial S = S_n + C ΔE and the yield check of update_stress().
-    Lanes sn[4], history[4], sy;
+    Lanes sn[4], strain[4], history[4], sy;
     {
       const double* state[kCps8Lanes];
       for (int l = 0; l < kCps8Lanes; ++l) state[l] = reinterpret_cast<const double*>(&lane[l].committed[i]);
-      gather_transposed<kShuffle>(state, kStressAt, sn);     // S_n (3), —
+      gather_transposed<kShuffle>(state, kStressAt, sn);        // S_n (3), Ep_11
+      gather_transposed<kShuffle>(state, kStrainAt, strain);    // Ep_22, Ep_12, ᾱ, plastic work
       gather_transposed<kShuffle>(state, kHistoryAt, history);  // —, ᾱ, —, λ3
     }
     const Lanes sn0 = sn[0], sn1 = sn[1], sn2 = sn[2], thickness = history[3];
@@ -221,28 +227,28 @@ template <bool kShuffle, bool kFormGeometry>
     Lanes energy = 0.5 * ((inv_e * (t0 * t0 + t1 * t1) + (two_inv_e_nu * t0) * t1) + (inv_g * t2) * t2);
     Lanes strain33 = inv_e_nu * (((t0 + t1) - sn0) - sn1);
     const Lanes w = in.weight[i] * thickness;
-    // Trial history (start_trial of cps8_force.cpp); lanes that yield take the scalar return
-    // mapping of update_stress() on the same ΔE.
+    // Trial history (start_trial of cps8_force.cpp), elastic on the lanes — Ep + 0 and
+    // W_p + w · 0 as the scalar kernel forms them (the sums turn a −0 into +0) — and stored with
+    // the stress after the push-forward; lanes that yield take the scalar return mapping of
+    // update_stress() on the same ΔE.
+    Lanes ep0 = sn[3] + 0.0, ep1 = strain[0] + 0.0, ep2 = strain[1] + 0.0, peeq = strain[2],
+          work = strain[3] + w * 0.0;
     for (int l = 0; l < kCps8Lanes; ++l) {
+      if (elastic[l]) continue;
       const PointState& cs = lane[l].committed[i];
-      PointState& ts = lane[l].trial[i];
-      if (elastic[l]) {
-        ts.plastic_strain = cs.plastic_strain + Vec3::Zero();
-        ts.peeq = cs.peeq;
-        ts.plastic_work = cs.plastic_work + w[l] * 0.0;
-      } else {
-        const J2Update up = material.update_stress(Vec3(de0[l], de1[l], de2[l]), cs);
-        t0[l] = up.stress(0);
-        t1[l] = up.stress(1);
-        t2[l] = up.stress(2);
-        energy[l] = up.elastic_energy;
-        strain33[l] = up.strain33_increment;
-        ts.plastic_strain = cs.plastic_strain + up.plastic_increment;
-        ts.peeq = up.peeq;
-        ts.plastic_work = cs.plastic_work + w[l] * up.dissipation;
-      }
-      plastic_work[l] += ts.plastic_work;
+      const J2Update up = material.update_stress(Vec3(de0[l], de1[l], de2[l]), cs);
+      t0[l] = up.stress(0);
+      t1[l] = up.stress(1);
+      t2[l] = up.stress(2);
+      energy[l] = up.elastic_energy;
+      strain33[l] = up.strain33_increment;
+      ep0[l] = cs.plastic_strain(0) + up.plastic_increment(0);
+      ep1[l] = cs.plastic_strain(1) + up.plastic_increment(1);
+      ep2[l] = cs.plastic_strain(2) + up.plastic_increment(2);
+      peeq[l] = up.peeq;
+      work[l] = cs.plastic_work + w[l] * up.dissipation;
     }
+    plastic_work += work;
     // point_stress(): S, selective S − p I with w p M_r into q_r.
     Lanes s00 = t0, s11 = t1;
     const Lanes s01 = t2;
@@ -274,7 +280,8 @@ template <bool kShuffle, bool kFormGeometry>
       }
     }
     elastic_energy += w * energy;
-    pt[i] = PointLanes{f00[i], f01[i], f10[i], f11[i], t0, t1, t2, 1.0 + 2.0 * strain33};
+    pt[i] = PointLanes{f00[i], f01[i], f10[i], f11[i], t0, t1, t2, 1.0 + 2.0 * strain33, {ep0, ep1, ep2, peeq, work},
+                       thickness};
   }
 
   // Push-forward σ = f S fᵀ / (det f λ3), λ3 = √max(1e-12, 1 + 2ΔE33) (finish_trial).
@@ -289,10 +296,15 @@ template <bool kShuffle, bool kFormGeometry>
     const Lanes scale = det * l3;
     const Lanes sigma00 = (m00 * p.f00 + m01 * p.f01) / scale, sigma11 = (m10 * p.f10 + m11 * p.f11) / scale,
                 sigma01 = (m00 * p.f10 + m01 * p.f11) / scale;
-    for (int l = 0; l < kCps8Lanes; ++l) {
-      PointState& ts = lane[l].trial[i];
-      ts.stress = Vec3(sigma00[l], sigma11[l], sigma01[l]);
-      ts.thickness_stretch = lane[l].committed[i].thickness_stretch * l3[l];
+    // The whole trial state: σ and Ep_11, Ep_22 … W_p (two 4 × 4 transposes), λ3.
+    {
+      double* state[kCps8Lanes];
+      for (int l = 0; l < kCps8Lanes; ++l) state[l] = reinterpret_cast<double*>(&lane[l].trial[i]);
+      const Lanes head[4] = {sigma00, sigma11, sigma01, p.history[0]};
+      scatter_transposed<kShuffle>(head, kStressAt, state);
+      scatter_transposed<kShuffle>(&p.history[1], kStrainAt, state);
+      const Lanes stretch = p.thickness * l3;
+      for (int l = 0; l < kCps8Lanes; ++l) lane[l].trial[i].thickness_stretch = stretch[l];
     }
   }
   // Selective: the volumetric force q_r f_r ∇N^r_a of the reduced points.
