@@ -31,7 +31,9 @@ struct Level2Settings {
   // ties) set them (level2_settings below), bench-hinge2 --membrane-scale / --penalty-scale
   // override. README "Level 2: softer stiff terms".
   double membrane_stiffness_scale = 1.0;
-  double membrane_damping_ratio = 1.0;    // Kelvin–Voigt, see PolygonChainInput
+  // Kelvin–Voigt ratios of the membrane bars and the hinge rotations (PolygonChainInput); the
+  // scene's [hinge] membrane_damping_ratio and hinge_damping_ratio set them (level2_settings).
+  double membrane_damping_ratio = 1.0;
   double hinge_damping_ratio = 1.0;
   double output_interval_s = 2e-5;        // history and shape samples
   double settle_time_s = 1e-3;            // run on after the impactor stops
@@ -96,7 +98,8 @@ struct Level2Settings {
   double static_mass_damping_per_s = 200.0;
 };
 
-// The defaults above with what the scene's [hinge] table carries (the stiff-term scales).
+// The defaults above with what the scene's [hinge] table carries (the stiff-term scales, the
+// damping ratios).
 // The central difference's default stiff-term scale (membrane and penalties, when the scene
 // sets none): its step is the stiff terms', IDA's is not. Measured on Test 30 welded / free /
 // plated (README "Level 2: softer stiff terms"): 1.9× fewer steps and CPU, crush per ring within
