@@ -64,7 +64,7 @@ struct Level2Case {
 
 Level2Case run_thesis_scene(double velocity_m_s) {
   Scene scene = load_scene(source_dir + "/data/scenes/thesis_dynamic.toml");
-  scene.impactor.velocity_m_s = velocity_m_s;
+  scene.impactor->velocity_m_s = velocity_m_s;
   scene.outputs.fields = false;
   HingeRunOptions o;
   o.level = "2";
