@@ -426,6 +426,12 @@ Scene parse_scene(const std::string& text, const std::string& file) {
       require(**value > 0 && **value <= 1, r, key, fmt::format("{} must lie in (0, 1] (1: the unscaled model)", **value));
     }
     if (r.has("level2_implicit_membrane")) h.level2_implicit_membrane = r.boolean("level2_implicit_membrane", false);
+    for (auto [key, value] : {std::pair{"membrane_damping_ratio", &h.membrane_damping_ratio},
+                              std::pair{"hinge_damping_ratio", &h.hinge_damping_ratio}}) {
+      if (!r.has(key)) continue;
+      *value = r.number(key, 0.0);
+      require(**value >= 0, r, key, fmt::format("{} must be >= 0 (a fraction of critical damping; 0: none)", **value));
+    }
     h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
         "level3_hinge_f",
         {{"least_onset_load", HingeSettings::Level3HingeF::LeastOnsetLoad},

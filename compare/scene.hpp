@@ -151,6 +151,12 @@ struct HingeSettings {
   // central difference (compare/hinge_run_2d.hpp kImplicitMembranePenaltyScale). IDA and Odeint
   // ignore it.
   std::optional<bool> level2_implicit_membrane;
+  // Level 2 Kelvin–Voigt damping ratios ζ, ≥ 0 (hinge/polygon_chain.hpp PolygonChainInput: the
+  // membrane bars and the hinge rotations, each a fraction of its element's critical damping).
+  // They stand in for the FE's wall-bending vibration losses and dissipate what the FE puts into
+  // plastic work (README "FE against the hinge model"). Unset: Level2Settings' defaults.
+  std::optional<double> membrane_damping_ratio;
+  std::optional<double> hinge_damping_ratio;
   // Level 3 hinge F of the wrap (hinge/level3_mechanism.hpp): fixed where the wrap starts at
   // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
   enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;

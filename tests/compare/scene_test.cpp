@@ -180,3 +180,19 @@ TEST(SceneErrors, Level2StiffTermScales) {
   EXPECT_FALSE(d.hinge.level2_membrane_stiffness_scale.has_value());  // the integrator's default
   EXPECT_FALSE(d.hinge.level2_penalty_stiffness_scale.has_value());
 }
+
+TEST(SceneErrors, Level2DampingRatios) {
+  for (const char* key : {"membrane_damping_ratio", "hinge_damping_ratio"}) {
+    for (const char* bad : {"-0.1", "-1e-12"})
+      expect_error(base + "\n[hinge]\n" + key + " = " + bad + "\n", std::string("hinge.") + key, ">= 0");
+    for (const char* bad : {"nan", "inf", "-inf"})
+      expect_error(base + "\n[hinge]\n" + key + " = " + bad + "\n", std::string("hinge.") + key, "finite");
+    expect_error(base + "\n[hinge]\n" + key + " = \"low\"\n", std::string("hinge.") + key, "expected a number");
+  }
+  const Scene s = parse_scene(base + "\n[hinge]\nmembrane_damping_ratio = 0\nhinge_damping_ratio = 0.25\n", "ok.toml");
+  EXPECT_EQ(s.hinge.membrane_damping_ratio, 0.0);  // 0 is allowed: no damper
+  EXPECT_EQ(s.hinge.hinge_damping_ratio, 0.25);
+  const Scene d = parse_scene(base, "ok.toml");
+  EXPECT_FALSE(d.hinge.membrane_damping_ratio.has_value());  // Level2Settings' default
+  EXPECT_FALSE(d.hinge.hinge_damping_ratio.has_value());
+}
