@@ -44,7 +44,9 @@ HybridOutcome run_ida(HybridSystem& system, double t0, std::vector<double>& y,
   io.max_steps = o.max_steps_per_segment;
   io.max_step = o.max_step;
   io.root_mask_tolerance = o.root_mask_tolerance;
-  if (o.ida_eigen_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::EigenDense;
+  if (o.ida_small_dense_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::SmallDense;
+  else if (o.ida_eigen_lu.value_or(false)) io.linear_solver = IdaOptions::LinearSolver::EigenDense;
+  io.small_vector_ops = o.ida_small_vector_ops.value_or(false);
   io.step_growth = {o.ida_step_growth_threshold.value_or(0.0), o.ida_step_hold_floor.value_or(0.0),
                     o.ida_step_growth_max.value_or(0.0)};
   const bool algebraic = has_algebraic(system.differential_mask());

@@ -98,6 +98,14 @@ struct HybridOptions {
   // (IdaOptions::LinearSolver::EigenDense), for small live states. Unset, the model's choice
   // (the driver: off).
   std::optional<bool> ida_eigen_lu;
+  // The same factorisation written out (IdaOptions::LinearSolver::SmallDense,
+  // hinge/small_dense_linear_solver.hpp), for a few unknowns; before ida_eigen_lu. Unset, the
+  // model's choice (the driver: off).
+  std::optional<bool> ida_small_dense_lu;
+  // IDA's vector operations for a few components (IdaOptions::small_vector_ops,
+  // hinge/ida_small_vector_ops.hpp): the same results to the bit, fewer instructions. Unset, the
+  // model's choice (the driver: off).
+  std::optional<bool> ida_small_vector_ops;
   // IDA's step-size changes after a successful step (IdaOptions::step_growth; SUNDIALS 6.4's
   // IDASetEtaFixedStepBounds / IDASetEtaMax). IDA keeps its step unless its error estimate
   // allows at least doubling it (then it doubles, no more) or asks for a cut: after each

@@ -2,6 +2,8 @@
 
 #include "eigen_dense_linear_solver.hpp"
 #include "ida_live_roots.hpp"
+#include "ida_small_vector_ops.hpp"
+#include "small_dense_linear_solver.hpp"
 
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
@@ -181,6 +183,10 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
   m.yp = check_alloc(N_VNew_Serial(n, m.context), "N_VNew_Serial");
   std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(m.y));
   std::copy(yp0.begin(), yp0.end(), N_VGetArrayPointer(m.yp));
+  if (options.small_vector_ops) {  // before IDAInit: IDA's own vectors are clones of y
+    use_small_vector_ops(m.y);
+    use_small_vector_ops(m.yp);
+  }
 
   m.ida = check_alloc(IDACreate(m.context), "IDACreate");
   m.check(IDASetErrHandlerFn(m.ida, &Impl::error_handler, &m), "IDASetErrHandlerFn");
@@ -214,6 +220,9 @@ IdaSolver::IdaSolver(DaeSystem& system, double t0, const std::vector<double>& y0
   } else if (options.linear_solver == IdaOptions::LinearSolver::EigenDense) {
     m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
     m.linear_solver = check_alloc(eigen_dense_linear_solver(n, m.context), "eigen_dense_linear_solver");
+  } else if (options.linear_solver == IdaOptions::LinearSolver::SmallDense) {
+    m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
+    m.linear_solver = check_alloc(small_dense_linear_solver(n, m.context), "small_dense_linear_solver");
   } else {
     m.matrix = check_alloc(SUNDenseMatrix(n, n, m.context), "SUNDenseMatrix");
     m.linear_solver = check_alloc(SUNLinSol_Dense(m.y, m.matrix, m.context), "SUNLinSol_Dense");

@@ -31,13 +31,17 @@ struct IdaOptions {
   double relative_tolerance = 1e-8;
   double absolute_tolerance = 1e-10;
   // EigenDense: Eigen's partially pivoted LU on the same dense matrix
-  // (hinge/eigen_dense_linear_solver.hpp), for small systems.
-  enum class LinearSolver { Dense, Band, EigenDense } linear_solver = LinearSolver::Dense;
+  // (hinge/eigen_dense_linear_solver.hpp), for small systems; SmallDense: the same written out
+  // (hinge/small_dense_linear_solver.hpp), for a few unknowns.
+  enum class LinearSolver { Dense, Band, EigenDense, SmallDense } linear_solver = LinearSolver::Dense;
   long upper_bandwidth = 0;  // band solver only
   long lower_bandwidth = 0;
   long max_steps = 100000;   // per call to advance()
   double max_step = 0.0;     // 0: no bound
   bool suppress_algebraic_error_test = false;  // IDASetSuppressAlg, for multipliers
+  // IDA's vectors with hinge/ida_small_vector_ops.hpp's operations: SUNDIALS' serial
+  // arithmetic to the bit, without its per-call dispatch, for states of a few components.
+  bool small_vector_ops = false;
   // A masked root function (see IdaSolver::reinit) is reported to IDA as exactly zero until
   // its magnitude exceeds this value; models scale their root functions to O(1).
   double root_mask_tolerance = 1e-9;

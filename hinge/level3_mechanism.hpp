@@ -248,6 +248,19 @@ Level3Result simulate_level3(const Level3Input& in, const HybridOptions& options
 // dispatches to it.
 Level3Result simulate_level3_inertial(const Level3Input& in, const HybridOptions& options,
                                       bool record_history = true);
+// The inertial chain's analytic IDA Jacobian against one-sided second-order difference
+// quotients of its right-hand side, at every state its run samples (each accepted step, both
+// sides of each event): the largest difference of an entry over the largest entry of its
+// column, the states and the columns compared (those of the crushing rings' rates and crushes).
+struct Level3JacobianCheck {
+  double worst_relative = 0.0;
+  long states = 0;
+  long columns = 0;
+  double worst_time_s = 0.0;  // where the worst column is: time, ring (0-based), rate or crush
+  int worst_ring = -1;
+  bool worst_is_rate = false;
+};
+Level3JacobianCheck level3_inertial_jacobian_check(const Level3Input& in, const HybridOptions& options);
 
 // Mean line of ring i's half (θ ∈ [0, π], 2 + 4·n points) in chain coordinates: ring top
 // at y = top_y; the state of a Level3RingResult. Points as {x, y}; angles in `theta`.

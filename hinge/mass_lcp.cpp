@@ -76,4 +76,65 @@ void FreeMassSolve::solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
   for (Eigen::Index i = 0; i < nf; ++i) x(free[i]) = rf_(i);
 }
 
+void SmallFreeMassSolve::solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
+                               const std::vector<Eigen::Index>& free, Eigen::VectorXd& x) {
+  const std::size_t nf = free.size();
+  if (nf == 0) return;
+  bool same = factored_ && nf_ == nf;
+  if (!same) {
+    nf_ = nf;
+    mf_.assign(nf * nf, 0.0);
+    l_.assign(nf * nf, 0.0);
+  }
+  rf_.resize(nf);
+  for (std::size_t i = 0; i < nf; ++i) {
+    rf_[i] = r(free[i]);
+    for (std::size_t j = 0; j < nf; ++j) {
+      const double m = mass(free[i], free[j]);
+      same = same && mf_[i * nf + j] == m;
+      mf_[i * nf + j] = m;
+    }
+  }
+  if (!same) {
+    factored_ = false;
+    for (std::size_t j = 0; j < nf; ++j) {
+      double d = mf_[j * nf + j];
+      for (std::size_t k = 0; k < j; ++k) d -= l_[j * nf + k] * l_[j * nf + k];
+      if (!(d > 0.0)) throw std::runtime_error("SmallFreeMassSolve: the free mass matrix is not positive definite");
+      const double ljj = std::sqrt(d);
+      l_[j * nf + j] = ljj;
+      for (std::size_t i = j + 1; i < nf; ++i) {
+        double a = mf_[i * nf + j];
+        for (std::size_t k = 0; k < j; ++k) a -= l_[i * nf + k] * l_[j * nf + k];
+        l_[i * nf + j] = a / ljj;
+      }
+    }
+  }
+  factored_ = true;
+  substitute(rf_.data());
+  for (std::size_t i = 0; i < nf; ++i) x(free[i]) = rf_[i];
+}
+
+void SmallFreeMassSolve::substitute(double* b) const {
+  const std::size_t nf = nf_;
+  for (std::size_t i = 0; i < nf; ++i) {  // L z = b
+    double a = b[i];
+    for (std::size_t k = 0; k < i; ++k) a -= l_[i * nf + k] * b[k];
+    b[i] = a / l_[i * nf + i];
+  }
+  for (std::size_t i = nf; i-- > 0;) {  // Lᵀ x = z
+    double a = b[i];
+    for (std::size_t k = i + 1; k < nf; ++k) a -= l_[k * nf + i] * b[k];
+    b[i] = a / l_[i * nf + i];
+  }
+}
+
+Eigen::VectorXd SmallFreeMassSolve::solve_free(const Eigen::VectorXd& b) const {
+  if (!factored_ || static_cast<std::size_t>(b.size()) != nf_)
+    throw std::logic_error("SmallFreeMassSolve::solve_free: no factor of that size (solve() first)");
+  Eigen::VectorXd x = b;
+  substitute(x.data());
+  return x;
+}
+
 }  // namespace ringcrush::hinge

@@ -47,4 +47,26 @@ class FreeMassSolve {
   bool factored_ = false;
 };
 
+// FreeMassSolve's problem for the inertial Level 3 chain (a few rings, a solve at every
+// residual, root and Jacobian evaluation): the Cholesky factor and the two triangular solves
+// written out on plain arrays, where Eigen's dynamic-size LLT spent most of a 1–6 unknown
+// solve in its setup (h52). The factor is kept while 𝓜_ff is the same to the bit. Not
+// FreeMassSolve's rounding (Level 1 keeps that one, bitwise).
+class SmallFreeMassSolve {
+ public:
+  // Throws std::runtime_error if 𝓜_ff is not positive definite.
+  void solve(const Eigen::MatrixXd& mass, const Eigen::VectorXd& r,
+             const std::vector<Eigen::Index>& free, Eigen::VectorXd& x);
+  // 𝓜_ff⁻¹ b in the free coordinates of the last solve() (its factor): the columns of the
+  // chain's analytic Jacobian. Throws std::logic_error without a factor of b's size.
+  Eigen::VectorXd solve_free(const Eigen::VectorXd& b) const;
+
+ private:
+  void substitute(double* b) const;  // b ← 𝓜_ff⁻¹ b in place
+  std::vector<double> mf_, l_;       // 𝓜_ff and its lower factor, row-major
+  std::vector<double> rf_;
+  std::size_t nf_ = 0;
+  bool factored_ = false;
+};
+
 }  // namespace ringcrush::hinge

@@ -100,6 +100,11 @@ double dh_inertia_factor_derivative(double phi) {
          c * c - 2.0 * phi * sn * c;
 }
 
+double dh_inertia_factor_second_derivative(double phi) {
+  const double c = std::cos(phi), sn = std::sin(phi);
+  return 4.0 * c * (1.0 - 2.0 * sn) - pi * std::cos(2.0 * phi);
+}
+
 double ring_mass(const RingSection& s, double density) {
   return density * pi * s.mean_diameter() * s.wall_thickness_m * s.width_m;
 }

@@ -61,6 +61,9 @@ double first_yield_load(const RingSection& s, double yield_stress);
 // K(φ) = (2 + cos²φ)(π/2 − φ) − 4 cos φ + 2 sin φ cos φ + φ cos²φ, and its derivative.
 double dh_inertia_factor(double phi);
 double dh_inertia_factor_derivative(double phi);
+// K″(φ) = 4 cos φ (1 − 2 sin φ) − π cos 2φ (K′ = 4 sin φ (1 − sin φ) − π sin φ cos φ, the
+// derivative above with its terms collected): the inertial Level 3 chain's analytic Jacobian.
+double dh_inertia_factor_second_derivative(double phi);
 
 // Mass of one ring, ρ π d t L.
 double ring_mass(const RingSection& s, double density);

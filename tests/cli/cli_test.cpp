@@ -135,3 +135,23 @@ TEST(Cli, BenchHinge2MembraneFlagBadValuesAreNamedErrors) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--membrane implicit needs --dampers implicit"), std::string::npos) << r.output;
 }
+
+// bench-level3 --accuracy (h52): the IDA run of the inertial Level 3 chain at the bench's rtol
+// against Odeint at rtol 1e-12 prints its crush error (within the 1e-6 d bar at 45 m/s) and
+// Odeint's event sequence; a run at rtol 1e-5 reports a larger error than at 1e-8.
+TEST(Cli, BenchLevel3AccuracyAgainstOdeint) {
+  auto crush_error = [](const std::string& out) {
+    const auto at = out.find("crush error ");
+    EXPECT_NE(at, std::string::npos) << out;
+    return at == std::string::npos ? 1.0 : std::stod(out.substr(at + 12));
+  };
+  const std::string base = "bench-level3 " + scenes + "test30_welded_level3_inertia.toml --velocity 45 --repeat 1 --only ida --accuracy";
+  const CommandRun tight = ringcrush(base);
+  ASSERT_EQ(tight.status, 0) << tight.output;
+  EXPECT_NE(tight.output.find("events the same (60 / 60)"), std::string::npos) << tight.output;
+  const double e8 = crush_error(tight.output);
+  EXPECT_LE(e8, 1e-6) << tight.output;
+  const CommandRun loose = ringcrush(base + " --rtol 1e-5");
+  ASSERT_EQ(loose.status, 0) << loose.output;
+  EXPECT_GT(crush_error(loose.output), e8) << loose.output;
+}

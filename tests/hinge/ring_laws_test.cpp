@@ -126,6 +126,8 @@ TEST(RingLaws, InertiaFactorAndMass) {  // #17, #18
     const double h = 1e-6;
     const double fd = (dh_inertia_factor(phi + h) - dh_inertia_factor(phi - h)) / (2 * h);
     EXPECT_NEAR(dh_inertia_factor_derivative(phi), fd, 1e-8);
+    const double fd2 = (dh_inertia_factor_derivative(phi + h) - dh_inertia_factor_derivative(phi - h)) / (2 * h);
+    EXPECT_NEAR(dh_inertia_factor_second_derivative(phi), fd2, 1e-8);
   }
   expect_rel(ring_mass(test30, 7850), 24.267e-3, 2e-5);
   expect_rel(ring_mass(test30, 8410), 25.998e-3, 2e-5);
