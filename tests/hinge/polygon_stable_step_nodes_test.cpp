@@ -3,7 +3,7 @@
 // the bit, as the scan of every node (stable_step_all_nodes), for every mask of stiffness
 // terms — on rings pushed into each other (one flattened onto its own inner wall), welded,
 // free and plated, half model and full rings, explicit and implicit dampers, with and without
-// mass damping; and before any contact.
+// mass damping; and at rest, without contact rows, where the node classes alone set it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -72,11 +72,22 @@ void check(bool half, PolygonJoint joint, unsigned seed) {
     for (const double mass_damping : {0.0, 300.0}) {
       auto in = pressed_rings(half, joint);
       in.mass_damping_per_s = mass_damping;
+      {  // The rings at rest 2 t apart (the welded ties stretched): no contact rows, so the
+         // node classes alone set the bound (the tied nodes' in the welded chain).
+        auto resting = in;
+        resting.pitch_m = in.outer_diameter_m + 2.0 * in.wall_thickness_m;
+        PolygonChain chain(resting);
+        chain.set_implicit_ring_dampers(implicit);
+        std::vector<double> y = chain.initial_state(), dydt(y.size());
+        chain.rhs(0.0, y.data(), dydt.data());
+        ASSERT_EQ(chain.stable_step(), chain.stable_step(PolygonChain::kAllStiffness & ~PolygonChain::kContacts));
+        expect_every_mask_equal(chain, "at rest");
+      }
       PolygonChain chain(in);
       chain.set_implicit_ring_dampers(implicit);
       std::vector<double> y = chain.initial_state(), dydt(y.size());
       chain.rhs(0.0, y.data(), dydt.data());
-      expect_every_mask_equal(chain, "initial state");
+      expect_every_mask_equal(chain, "initial state (neighbours overlapping)");
       std::mt19937 rng(seed);
       for (int k = 0; k < 4; ++k) {
         y = pressed_state(chain, rng);
