@@ -85,7 +85,10 @@ double PolygonChain::stable_step_scan(unsigned terms, bool every_node) const {
   } else {
     // Only the nodes the last evaluation gave contact rows (≈ 12 touching pairs on Test 30
     // against 150 nodes); the classes' sizes from the few special nodes. min is exact and
-    // order-free, so the bound is the scan's to the bit.
+    // order-free, so the bound is the scan's to the bit. A class whose members all have
+    // contact rows is left out, as the scan leaves it: in exact arithmetic a node's step with
+    // its rows is never above its class's, but √(1 + ξ²) − ξ need not be monotone to the last
+    // bit, so the distinct nodes are counted (the marks) rather than the class assumed.
     int specials[3], n_special = 0;  // 0, jb, n_ind − 1, each once (jb = n_ind − 1 in the half model)
     for (const int j : {0, jb, n_ind_ - 1})
       if (std::find(specials, specials + n_special, j) == specials + n_special) specials[n_special++] = j;
