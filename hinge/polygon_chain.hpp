@@ -247,6 +247,9 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // always): which term sets the step (polygon_stiffness_spectrum.hpp, stable_step_breakdown).
   enum StepTerm : unsigned { kMembrane = 1, kHinges = 2, kTies = 4, kContacts = 8, kAllStiffness = 15 };
   double stable_step(unsigned terms) const;
+  // The same bound from a scan of every node (the reference path of stable_step, which visits
+  // only the nodes with contact rows and one node of each remaining class): for tests.
+  double stable_step_all_nodes(unsigned terms) const;
   // K = −∂φ/∂y of the force laws without the Kelvin–Voigt dampers (analytic_jacobian with
   // c_b = c_θ = 0, cj = 0; polygon_stiffness_spectrum.cpp): the stiffness the step is bound by.
   void stiffness_triplets(double t, const double* y, std::vector<Triplet>& out);
@@ -457,6 +460,12 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // of the contact stiffness and damping entries, weighted as the forces.
   std::vector<double> contact_k_row_, contact_c_row_;
   void add_contact_rows(std::size_t entity, double w, double penetration, double rate);
+  // The ring nodes add_contact_rows touched since the last evaluation began (repeats
+  // possible), and stable_step's marks of the ones it has visited in one call.
+  std::vector<int> contact_row_nodes_;
+  mutable std::vector<std::uint64_t> contact_row_mark_;
+  mutable std::uint64_t contact_row_epoch_ = 0;
+  double stable_step_scan(unsigned terms, bool every_node) const;
   // The flow update of rhs_with_flow_update, set while it runs: Δλ of one hinge, and the
   // update of hinge k of ring r in ring_forces (θp, ā in flow_y_, the moment and work).
   double return_map(double trial_moment, double plastic_sum, double dt, double& min_relaxation_time) const;

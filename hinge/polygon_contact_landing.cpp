@@ -24,6 +24,7 @@ void PolygonChain::set_contact_landing(double depth, double min_speed) {
                                 std::to_string(depth) + ", " + std::to_string(min_speed));
   landing_depth_ = depth;
   landing_speed_ = min_speed;
+  candidates_built_ = false;  // the lists' reach follows the landing (build_candidates)
 }
 
 }  // namespace ringcrush::hinge

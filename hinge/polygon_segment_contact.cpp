@@ -73,7 +73,10 @@ void PolygonChain::build_candidates(const double* y) {
   candidate_segment_.clear();
   std::fill(candidate_start_.begin(), candidate_start_.end(), 0);
   candidate_nodes_.clear();
-  const double grow = candidate_margin_;  // on top of the t already in seg_box_
+  // On top of the t already in seg_box_: the margin, and with the contact landing its reach
+  // beyond the t-box (node_segment_contact), so that carried lists still hold every segment
+  // whose box grown by 2t can take the node.
+  const double grow = candidate_margin_ + (landing_depth_ > 0.0 ? t_ : 0.0);
   // Each ring's box (its segments' boxes together): a node outside it, grown, has no
   // candidate on that ring — most nodes of a neighbouring ring, which meets it at one place.
   std::vector<std::array<double, 4>>& ring_box = candidate_ring_box_;
@@ -130,7 +133,14 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
   const int* node_first = candidate_nodes_.data() + candidate_node_start_[2 * static_cast<std::size_t>(pass)];
   const int* node_last = candidate_nodes_.data() + candidate_node_start_[2 * static_cast<std::size_t>(pass) + 1];
   const double* master = y + node_offset(rm, 0);
-  const lanes::Pair grow = {t_, t_};
+  // The box each listed segment is tested against: grown by t, the touching pairs' reach —
+  // and by 2t with the contact landing, whose closing pairs are those within a gap of t
+  // (best < 2t below, polygon_contact_landing.cpp). With the t-box those were seen only once
+  // touching, so a pair closing fast was first seen deep: on the welded chain at 50 m/s a
+  // ring's inner walls met at 0.03 t and 32 m/s after a 2 µs step, 1e-3 of KE0 in one sample
+  // at safety 1 (README, h51).
+  const double reach = landing_depth_ > 0.0 ? 2.0 * t_ : t_;
+  const lanes::Pair grow = {reach, reach};
   // The half model's segments end at a + 1 (a ≤ n_ind − 2); the full ring's last one wraps.
   const int wrap = half_ ? -1 : n_ind_ - 1;
   for (const int* jt = node_first; jt != node_last; ++jt) {
@@ -145,7 +155,7 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const int* last = candidate_segment_.data() + candidate_start_[base + static_cast<std::size_t>(j) + 1];
     for (const int* it = first; it != last; ++it) {
       const int a = *it;
-      // The segment's box grown by t (segment_box's values): the node outside it is too far.
+      // The segment's box grown by the reach: the node outside it is too far.
       const double* pa = master + 6 * static_cast<std::size_t>(a);
       const double* pb = a == wrap ? master : pa + 6;
       const lanes::Pair end_a = lanes::load(pa), end_b = lanes::load(pb);
