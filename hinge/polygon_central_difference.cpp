@@ -81,9 +81,6 @@ void PolygonCentralDifference::filter_initial_acceleration() {
   stiff_end_.assign(y_.size(), 0.0);
   correction_.assign(y_.size(), 0.0);
   correction_next_.assign(y_.size(), 0.0);
-  inverse_mass_.assign(y_.size(), 0.0);
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) inverse_mass_[i] = 1.0 / chain_.mass_row(i);
   chain_.membrane_stiffness_product(y_.data(), y_.data(), stiff_end_.data());  // K_m v_0
   std::vector<double>& u = stiff_half_;  // scratch: the solve's v rows
   for (std::size_t o = 2; o < nodes_end_; o += 6)
@@ -129,18 +126,17 @@ void PolygonCentralDifference::update_stable_step() {
 void PolygonCentralDifference::membrane_step(double h) {
   const std::size_t acc = chain_.accumulator_offset();
   double* y = y_.data();
-  chain_.membrane_stiffness_product(y, v_half_.data(), stiff_half_.data());
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) y[i] += h * h * stiff_half_[i] * inverse_mass_[i];
-  // d on exit: (C + h K_m) v_{n+1}.
-  chain_.ring_damper_membrane_step(y, h, y, damper_next_.data());
-  chain_.membrane_stiffness_product_again(y, stiff_end_.data());  // the positions are y's still
+  // K_m v_{n+½}, the solve, d = (C + h K_m) v_{n+1} and K_m v_{n+1} on one assembly.
+  chain_.ring_damper_membrane_kick(y, h, v_half_.data(), y, damper_next_.data(), stiff_half_.data(),
+                                   stiff_end_.data());
+  // u/h by one reciprocal: a division per row was the loop's longest latency.
+  const double inv_h = 1.0 / h;
   double work = 0.0, correction_work = 0.0;
   for (std::size_t o = 2; o < nodes_end_; o += 6)
     for (std::size_t i = o; i < o + 2; ++i) {
       correction_next_[i] = h * (stiff_end_[i] - stiff_half_[i]);
       damper_next_[i] -= h * stiff_half_[i];
-      a_next_[i] = (y[i] - v_half_[i]) / h;
+      a_next_[i] = (y[i] - v_half_[i]) * inv_h;
       const double start = v_start_[i] + v_half_[i], end = v_half_[i] + y[i];
       work += damper_[i] * start + damper_next_[i] * end;
       correction_work += correction_[i] * start + correction_next_[i] * end;
