@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+#include "hinge/ring_lanes.hpp"
+
 namespace ringcrush::hinge {
 
 struct BarDirection {
@@ -21,6 +23,18 @@ struct BarDirection {
 inline BarDirection bar_direction(double wx, double wy) {
   const double r = 1.0 / (wx * wx + wy * wy);
   const double s = std::sqrt(r);
+  return {-wy * r, wx * r, wx * s, wy * s};
+}
+
+// Two bars on the lanes of a Pair (one divpd and one sqrtpd for both): each lane the scalar
+// form's operations, so the same bits.
+struct BarDirectionPair {
+  lanes::Pair nx, ny, ex, ey;
+};
+
+inline BarDirectionPair bar_direction(lanes::Pair wx, lanes::Pair wy) {
+  const lanes::Pair r = 1.0 / (wx * wx + wy * wy);
+  const lanes::Pair s = lanes::sqrt(r);
   return {-wy * r, wx * r, wx * s, wy * s};
 }
 

@@ -207,12 +207,25 @@ void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge
   // Each bar's e and n/ℓ (its square root and division, polygon_bar_direction.hpp) first,
   // then the elements from them.
   double* bars = elements + kElementSize * (2 * last + 2 + 2 * kElementPad);  // [n/ℓ, e] per bar
-  for (int k = 0; k < last; ++k) {
-    const BarDirection g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
-    bars[4 * k] = g.nx;
-    bars[4 * k + 1] = g.ny;
-    bars[4 * k + 2] = g.ex;
-    bars[4 * k + 3] = g.ey;
+  {
+    int k = 0;
+    for (; k + 1 < last; k += 2) {  // two bars to a Pair
+      const BarDirectionPair g = bar_direction(Pair{X(k + 1) - X(k), X(k + 2) - X(k + 1)},
+                                               Pair{Y(k + 1) - Y(k), Y(k + 2) - Y(k + 1)});
+      for (int c = 0; c < 2; ++c) {
+        bars[4 * (k + c)] = g.nx[c];
+        bars[4 * (k + c) + 1] = g.ny[c];
+        bars[4 * (k + c) + 2] = g.ex[c];
+        bars[4 * (k + c) + 3] = g.ey[c];
+      }
+    }
+    for (; k < last; ++k) {
+      const BarDirection g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
+      bars[4 * k] = g.nx;
+      bars[4 * k + 1] = g.ny;
+      bars[4 * k + 2] = g.ex;
+      bars[4 * k + 3] = g.ey;
+    }
   }
   if (bar_e)
     for (int k = 0; k < last; ++k) {
@@ -251,17 +264,12 @@ inline std::size_t element_scratch_size(int n_ind) {
   return static_cast<std::size_t>(kElementSize * (2 * (n_ind - 1) + 2 + 2 * kElementPad) + 4 * (n_ind - 1));
 }
 
-}  // namespace
-
-void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
-  const int last = n_ind_ - 1;
-  const std::ptrdiff_t S = lane_count(n_rings_);  // band: ring r's C(i, i − q) at (6 i + q) S
-  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
-  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
-  // The membrane's bar directions for its K_m products (ring_damper_membrane_kick).
-  double* bar_e = implicit_membrane_ && half_ ? membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(ring * last) : nullptr;
-  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch, bar_e);
-  const double* E = scratch + kElementSize * kElementPad;
+// Every node's two band rows of one ring from its elements (E at E_0), ring r's C(i, i − q) at
+// band[(6 i + q) S] (band at the ring's lane); kS the lane stride S when known at compile time
+// (0: the argument).
+template <int kS>
+void band_rows(const double* E, int last, double* band, std::ptrdiff_t lanes) {
+  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   for (int j = 0; j <= last; ++j) {
     // Node j's elements in the summation order and its local node in each, with those of
     // nodes j − 1 and j − 2 where the element holds them.
@@ -306,7 +314,28 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
   // Axis nodes' x: row and column cleared.
   for (const int i : {0, 2 * last}) {
     for (int q = 0; q <= kBand; ++q) band[(6 * i + q) * S] = 0.0;
-    for (int r = i + 1; r <= std::min(2 * n_ind_ - 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
+    for (int r = i + 1; r <= std::min(2 * last + 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
+  }
+}
+
+}  // namespace
+
+void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
+  const int last = n_ind_ - 1;
+  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
+  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
+  // The membrane's bar directions for its K_m products (ring_damper_membrane_kick).
+  double* bar_e = implicit_membrane_ && half_ ? membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(ring * last) : nullptr;
+  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch, bar_e);
+  const double* E = scratch + kElementSize * kElementPad;
+  // The band's lane stride a compile-time constant for the usual ring counts: the strided
+  // stores then take immediate offsets (band_rows).
+  switch (lane_count(n_rings_)) {
+    case 2: band_rows<2>(E, last, band, 2); break;
+    case 4: band_rows<4>(E, last, band, 4); break;
+    case 6: band_rows<6>(E, last, band, 6); break;
+    case 8: band_rows<8>(E, last, band, 8); break;
+    default: band_rows<0>(E, last, band, lane_count(n_rings_));
   }
 }
 
@@ -405,38 +434,53 @@ void PolygonChain::assemble_half_bands(const double* y) {
   for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
 }
 
-void PolygonChain::half_band_solve(double h, double* v, double* d) {
-  const int R = n_rings_, S = lane_count(R);
-  const auto lanes = static_cast<std::size_t>(S);
-  double* L = kv_band_l_.data() + 6 * kBand * lanes;
-  double* b = kv_b_.data() + kBand * lanes;
-  double* inv = kv_inv_diag_.data() + kBand * lanes;
-  const double* C = kv_band_c_.data();
+namespace {
+
+// The band solve's operands: the interleaved band C, factor L, right-hand side b and 1/D
+// (each at its first band row), the masses μ and the state-length v and d.
+struct BandSolve {
+  const double* C;
+  double *L, *b, *inv;
+  const double* mu;
+  int n_ind, rings;
+  double h;
+  double *v, *d;
+};
+
+// half_band_solve on S lanes; kS the lane stride when known at compile time (0: p's), so that
+// the rows' strided loads take immediate offsets and the pointers stay in registers. Returns
+// whether every pivot was positive.
+template <int kS>
+bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
+  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
+  const int R = p.rings, n_ind = p.n_ind;
+  const double *C = p.C, *mu = p.mu;
+  double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
+  auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
   bool definite = true;
-  for (int j = 0; j < n_ind_; ++j) {
-    const bool axis = j == 0 || j == n_ind_ - 1;  // axis nodes' x stays 0
+  for (int j = 0; j < n_ind; ++j) {
+    const bool axis = j == 0 || j == n_ind - 1;  // axis nodes' x stays 0
     const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
-      const std::size_t o = node_offset(r, j) + 2;
-      bx[r] = axis ? 0.0 : mu_[o] * v[o];
-      bx[S + r] = mu_[o] * v[o + 1];
+      const std::size_t o = node(r, j) + 2;
+      bx[r] = axis ? 0.0 : mu[o] * v[o];
+      bx[S + r] = mu[o] * v[o + 1];
     }
     for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
-      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
+      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
+      row_residual<4>(C + at + r, p.h, m, L + at + r, ix + r, bx + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r);
     for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
-      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
+      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
+      row_residual<5>(C + at + 6 * S + r, p.h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r);
   }
-  if (!definite)
-    throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
-  for (int j = n_ind_ - 1; j >= 0; --j) {
+  if (!definite) return false;
+  for (int j = n_ind - 1; j >= 0; --j) {
     const double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     const double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
@@ -449,17 +493,45 @@ void PolygonChain::half_band_solve(double h, double* v, double* d) {
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
-  const double inv_h = 1.0 / h;
+  const double inv_h = 1.0 / p.h;
   for (int r = 0; r < R; ++r)
-    for (int j = 0; j < n_ind_; ++j) {
-      const std::size_t o = node_offset(r, j) + 2;
+    for (int j = 0; j < n_ind; ++j) {
+      const std::size_t o = node(r, j) + 2;
       const double* x = b + 2 * static_cast<std::ptrdiff_t>(j) * S + r;
-      const double m = mu_[o], vx = x[0], vy = x[S];
-      d[o] = j == 0 || j == n_ind_ - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
+      const double m = mu[o], vx = x[0], vy = x[S];
+      d[o] = j == 0 || j == n_ind - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
       d[o + 1] = m * (v[o + 1] - vy) * inv_h;
       v[o] = vx;
       v[o + 1] = vy;
     }
+  return true;
+}
+
+}  // namespace
+
+void PolygonChain::half_band_solve(double h, double* v, double* d) {
+  const int S = lane_count(n_rings_);
+  const auto lanes = static_cast<std::size_t>(S);
+  const BandSolve p{kv_band_c_.data(),
+                    kv_band_l_.data() + 6 * kBand * lanes,
+                    kv_b_.data() + kBand * lanes,
+                    kv_inv_diag_.data() + kBand * lanes,
+                    mu_.data(),
+                    n_ind_,
+                    n_rings_,
+                    h,
+                    v,
+                    d};
+  bool definite;
+  switch (S) {
+    case 2: definite = solve_band<2>(p, 2); break;
+    case 4: definite = solve_band<4>(p, 4); break;
+    case 6: definite = solve_band<6>(p, 6); break;
+    case 8: definite = solve_band<8>(p, 8); break;
+    default: definite = solve_band<0>(p, S);
+  }
+  if (!definite)
+    throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
 }
 
 void PolygonChain::ring_damper_forces(const double* y, const double* v, double* d) {

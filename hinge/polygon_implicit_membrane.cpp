@@ -28,7 +28,7 @@ void PolygonChain::membrane_stiffness_product(const double* y, const double* v, 
   for (int r = 0; r < n_rings_; ++r) {
     double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
     for (int k = 0; k < bars; ++k) {
-      const std::size_t a = node_offset(r, k), b = node_offset(r, (k + 1) % n_ind_);
+      const std::size_t a = node_offset(r, k), b = node_offset(r, k + 1 < n_ind_ ? k + 1 : 0);
       // The band's e (polygon_bar_direction.hpp), so that K_m here is the band's to the bit.
       const BarDirection g = bar_direction(y[b] - y[a], y[b + 1] - y[a + 1]);
       e[2 * k] = g.ex;
@@ -49,7 +49,8 @@ void PolygonChain::membrane_stiffness_product_again(const double* v, double* out
     const double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
     double fx = 0.0, fy = 0.0;  // s e of the bar before
     for (int k = 0; k < bars; ++k) {
-      const std::size_t a = node_offset(r, k) + 2, b = node_offset(r, (k + 1) % n_ind_) + 2;
+      // The next node without a modulo (an integer division per bar was this loop's latency).
+      const std::size_t a = node_offset(r, k) + 2, b = k + 1 < n_ind_ ? a + 6 : node_offset(r, 0) + 2;
       const double ex = e[2 * k], ey = e[2 * k + 1];
       const double s = k_m_ * (ex * (v[b] - v[a]) + ey * (v[b + 1] - v[a + 1]));
       const double gx = s * ex, gy = s * ey;
@@ -58,7 +59,7 @@ void PolygonChain::membrane_stiffness_product_again(const double* v, double* out
       fx = gx;
       fy = gy;
     }
-    const std::size_t z = node_offset(r, bars % n_ind_) + 2;  // the last bar's end node
+    const std::size_t z = node_offset(r, bars < n_ind_ ? bars : 0) + 2;  // the last bar's end node
     if (half_) {
       out[z] = 0.0 + fx;
       out[z + 1] = 0.0 + fy;
