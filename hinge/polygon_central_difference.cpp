@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hinge/ring_lanes.hpp"
+
 namespace ringcrush::hinge {
 
 PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t0, std::vector<double> y0,
@@ -129,18 +131,26 @@ void PolygonCentralDifference::membrane_step(double h) {
   // K_m v_{n+½}, the solve, d = (C + h K_m) v_{n+1} and K_m v_{n+1} on one assembly.
   chain_.ring_damper_membrane_kick(y, h, v_half_.data(), y, damper_next_.data(), stiff_half_.data(),
                                    stiff_end_.data());
-  // u/h by one reciprocal: a division per row was the loop's longest latency.
+  // Each node's (x, y) rows as one Pair, u/h by one reciprocal (a division per row was the
+  // loop's longest latency), and the two works summed per lane — x rows and y rows apart, then
+  // added: the sums' order is not the rows', so their last bits are not the row-by-row sums'
+  // (the serial sum was this loop's other latency chain).
   const double inv_h = 1.0 / h;
-  double work = 0.0, correction_work = 0.0;
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) {
-      correction_next_[i] = h * (stiff_end_[i] - stiff_half_[i]);
-      damper_next_[i] -= h * stiff_half_[i];
-      a_next_[i] = (y[i] - v_half_[i]) * inv_h;
-      const double start = v_start_[i] + v_half_[i], end = v_half_[i] + y[i];
-      work += damper_[i] * start + damper_next_[i] * end;
-      correction_work += correction_[i] * start + correction_next_[i] * end;
-    }
+  using lanes::Pair;
+  Pair work2 = {0.0, 0.0}, correction2 = {0.0, 0.0};
+  for (std::size_t o = 2; o < nodes_end_; o += 6) {
+    const Pair k_half = lanes::load(&stiff_half_[o]);
+    const Pair correction = h * (lanes::load(&stiff_end_[o]) - k_half);
+    const Pair d = lanes::load(&damper_next_[o]) - h * k_half;
+    const Pair v = lanes::load(y + o), v_half = lanes::load(&v_half_[o]);
+    lanes::store(&correction_next_[o], correction);
+    lanes::store(&damper_next_[o], d);
+    lanes::store(&a_next_[o], (v - v_half) * inv_h);
+    const Pair start = lanes::load(&v_start_[o]) + v_half, end = v_half + v;
+    work2 += lanes::load(&damper_[o]) * start + d * end;
+    correction2 += lanes::load(&correction_[o]) * start + correction * end;
+  }
+  const double work = work2[0] + work2[1], correction_work = correction2[0] + correction2[1];
   // ¼Δt = ½h.
   y[acc + 2] += 0.5 * h * work;
   stats_.membrane_correction_work_j += 0.5 * h * correction_work;
