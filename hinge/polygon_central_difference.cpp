@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hinge/ring_lanes.hpp"
+
 namespace ringcrush::hinge {
 
 PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t0, std::vector<double> y0,
@@ -81,9 +83,6 @@ void PolygonCentralDifference::filter_initial_acceleration() {
   stiff_end_.assign(y_.size(), 0.0);
   correction_.assign(y_.size(), 0.0);
   correction_next_.assign(y_.size(), 0.0);
-  inverse_mass_.assign(y_.size(), 0.0);
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) inverse_mass_[i] = 1.0 / chain_.mass_row(i);
   chain_.membrane_stiffness_product(y_.data(), y_.data(), stiff_end_.data());  // K_m v_0
   std::vector<double>& u = stiff_half_;  // scratch: the solve's v rows
   for (std::size_t o = 2; o < nodes_end_; o += 6)
@@ -129,22 +128,29 @@ void PolygonCentralDifference::update_stable_step() {
 void PolygonCentralDifference::membrane_step(double h) {
   const std::size_t acc = chain_.accumulator_offset();
   double* y = y_.data();
-  chain_.membrane_stiffness_product(y, v_half_.data(), stiff_half_.data());
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) y[i] += h * h * stiff_half_[i] * inverse_mass_[i];
-  // d on exit: (C + h K_m) v_{n+1}.
-  chain_.ring_damper_membrane_step(y, h, y, damper_next_.data());
-  chain_.membrane_stiffness_product_again(y, stiff_end_.data());  // the positions are y's still
-  double work = 0.0, correction_work = 0.0;
-  for (std::size_t o = 2; o < nodes_end_; o += 6)
-    for (std::size_t i = o; i < o + 2; ++i) {
-      correction_next_[i] = h * (stiff_end_[i] - stiff_half_[i]);
-      damper_next_[i] -= h * stiff_half_[i];
-      a_next_[i] = (y[i] - v_half_[i]) / h;
-      const double start = v_start_[i] + v_half_[i], end = v_half_[i] + y[i];
-      work += damper_[i] * start + damper_next_[i] * end;
-      correction_work += correction_[i] * start + correction_next_[i] * end;
-    }
+  // K_m v_{n+½}, the solve, d = (C + h K_m) v_{n+1} and K_m v_{n+1} on one assembly.
+  chain_.ring_damper_membrane_kick(y, h, v_half_.data(), y, damper_next_.data(), stiff_half_.data(),
+                                   stiff_end_.data());
+  // Each node's (x, y) rows as one Pair, u/h by one reciprocal (a division per row was the
+  // loop's longest latency), and the two works summed per lane — x rows and y rows apart, then
+  // added: the sums' order is not the rows', so their last bits are not the row-by-row sums'
+  // (the serial sum was this loop's other latency chain).
+  const double inv_h = 1.0 / h;
+  using lanes::Pair;
+  Pair work2 = {0.0, 0.0}, correction2 = {0.0, 0.0};
+  for (std::size_t o = 2; o < nodes_end_; o += 6) {
+    const Pair k_half = lanes::load(&stiff_half_[o]);
+    const Pair correction = h * (lanes::load(&stiff_end_[o]) - k_half);
+    const Pair d = lanes::load(&damper_next_[o]) - h * k_half;
+    const Pair v = lanes::load(y + o), v_half = lanes::load(&v_half_[o]);
+    lanes::store(&correction_next_[o], correction);
+    lanes::store(&damper_next_[o], d);
+    lanes::store(&a_next_[o], (v - v_half) * inv_h);
+    const Pair start = lanes::load(&v_start_[o]) + v_half, end = v_half + v;
+    work2 += lanes::load(&damper_[o]) * start + d * end;
+    correction2 += lanes::load(&correction_[o]) * start + correction * end;
+  }
+  const double work = work2[0] + work2[1], correction_work = correction2[0] + correction2[1];
   // ¼Δt = ½h.
   y[acc + 2] += 0.5 * h * work;
   stats_.membrane_correction_work_j += 0.5 * h * correction_work;
@@ -170,17 +176,16 @@ void PolygonCentralDifference::step(double dt) {
   double* y = y_.data();
   const double* a = a_.data();
   double* a_next = a_next_.data();
-  if (implicit)
-    for (std::size_t o = 2; o < nodes_end_; o += 6) {
-      v_start_[o] = y[o];
-      v_start_[o + 1] = y[o + 1];
-    }
-  for (std::size_t o = 0; o < nodes_end_; o += 6)
-    for (std::size_t c = 0; c < 2; ++c) {
-      double& v = y[o + 2 + c];
-      v += 0.5 * dt * a[o + 2 + c];
-      y[o + c] += dt * v;
-    }
+  // The node rows' (x, y) and (v_x, v_y) as Pairs, v_n kept for the implicit dampers' work.
+  using lanes::Pair;
+  const double half_dt = 0.5 * dt;
+  for (std::size_t o = 0; o < nodes_end_; o += 6) {
+    Pair v = lanes::load(y + o + 2);
+    if (implicit) lanes::store(&v_start_[o + 2], v);
+    v += half_dt * lanes::load(a + o + 2);
+    lanes::store(y + o + 2, v);
+    lanes::store(y + o, lanes::load(y + o) + dt * v);
+  }
   for (std::size_t i = 0; i < nb; ++i) {
     double& v = y[velocity_rows_[i]];
     v += 0.5 * dt * a[velocity_rows_[i]];
@@ -194,12 +199,9 @@ void PolygonCentralDifference::step(double dt) {
   chain_.rhs_with_flow_update(t_, y, dt, a_next, y[acc], stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
   for (std::size_t o = 2; o < nodes_end_; o += 6) {
-    if (implicit) {
-      v_half_[o] = y[o];
-      v_half_[o + 1] = y[o + 1];
-    }
-    y[o] += 0.5 * dt * a_next[o];
-    y[o + 1] += 0.5 * dt * a_next[o + 1];
+    const Pair v = lanes::load(y + o);
+    if (implicit) lanes::store(&v_half_[o], v);
+    lanes::store(y + o, v + half_dt * lanes::load(a_next + o));
   }
   for (std::size_t i = 0; i < nb; ++i) y[velocity_rows_[i]] += 0.5 * dt * a_next[velocity_rows_[i]];
   for (std::size_t k = 1; k < 4; ++k) y[acc + k] += 0.5 * dt * a_next[acc + k];

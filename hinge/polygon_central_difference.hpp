@@ -148,7 +148,7 @@ class PolygonCentralDifference {
   std::vector<double> damper_, damper_next_, v_start_, v_half_;
   // Implicit membrane: K_m v_{n+½}, K_m v_{n+1}, and the correction h K_m u at the step's
   // start and end.
-  std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_, inverse_mass_;
+  std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_;
   std::size_t nodes_end_ = 0;  // the node rows: 6 per node from row 0
   std::vector<std::size_t> velocity_rows_, position_rows_;  // the free bodies' pairs x′ = v
   double dt_stable_ = 0.0;

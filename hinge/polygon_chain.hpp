@@ -267,7 +267,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // only the node velocity rows are read and written.
   void ring_damper_forces(const double* y, const double* v, double* d);
   // ring_damper_step: on entry v holds a velocity prediction v*; on exit the solution of
-  // (μ + h C(x)) v = μ v* and d = C(x) v (one banded Cholesky per ring, O(N)). v may be y.
+  // (μ + h C(x)) v = μ v* and d = C(x) v (one banded factorisation per ring, O(N)). v may be y.
   void ring_damper_step(const double* y, double h, double* v, double* d);
   double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
 
@@ -289,6 +289,14 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // As ring_damper_step with C + h K_m(x) for C: on exit (μ + h C + h² K_m) v = μ v* and
   // d = (C + h K_m) v. h > 0.
   void ring_damper_membrane_step(const double* y, double h, double* v, double* d);
+  // The driver's whole implicit-membrane solve in one call (polygon_central_difference.hpp's
+  // second half-kick): with v* in v's node rows and w = v_{n+½}, on exit kw = K_m(x) w,
+  // (μ + h C + h² K_m) v = μ v* + h² K_m w, d = (C + h K_m) v and kv = K_m(x) v. The half
+  // model takes K_m's bar directions from the band's assembly (one square root per bar for
+  // both); the full ring is membrane_stiffness_product, ring_damper_membrane_step and
+  // membrane_stiffness_product_again in turn. h > 0; v may be y, the other arrays distinct.
+  void ring_damper_membrane_kick(const double* y, double h, const double* w, double* v, double* d, double* kw,
+                                 double* kv);
 
   // Contact landing (polygon_contact_landing.cpp; CentralDifferenceOptions::
   // contact_landing_depth): while depth > 0, every evaluation notes, over the node–plate and
@@ -510,7 +518,7 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // adds h k_m to every bar's coefficient in the damper matrix.
   bool implicit_membrane_ = false;
   double membrane_h_ = 0.0;
-  std::vector<double> membrane_e_;  // e of every bar of the last membrane_stiffness_product
+  std::vector<double> membrane_e_;  // e of every bar of the last membrane_stiffness_product or kick
   double bar_matrix_coefficient() const { return membrane_h_ > 0.0 ? c_bar_ + membrane_h_ * k_m_ : c_bar_; }
   std::vector<int> kv_first_, kv_start_;
   std::vector<double> kv_c_, kv_factor_, kv_b_;
@@ -520,10 +528,16 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // The half model's fast path: the open band (bandwidth 5) of every ring assembled straight
   // from y, interleaved — C(i, i − q) of ring r at (6 i + q) S + r, S the ring count rounded up
   // to even (two rings to an SSE2 vector), then assemble_half_band's element scratch —; the
-  // Cholesky factors interleaved alike in kv_band_l_.
+  // L D Lᵀ factors interleaved alike in kv_band_l_ (D in the diagonal slots, 1/D in kv_inv_diag_).
   std::vector<double> kv_band_c_, kv_band_l_, kv_inv_diag_;
   void assemble_half_band(int ring, const double* y, double* band);
   void half_band_step(const double* y, double h, double* v, double* d);
+  // half_band_step in its parts: the arrays sized (once), every ring's band assembled (and,
+  // with the implicit membrane, membrane_e_ filled from its bars), the factorisation and solve.
+  void prepare_half_band();
+  void assemble_half_bands(const double* y);
+  void half_band_solve(double h, double* v, double* d);
+  std::vector<double> kv_inverse_mu_;  // 1/μ of every row (the membrane kick's h² K_m w / μ)
 };
 
 }  // namespace ringcrush::hinge

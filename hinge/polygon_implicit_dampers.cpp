@@ -17,7 +17,8 @@
 // model) have bandwidth 5; the full ring's wrap-around gives the last node's rows a full
 // profile, but the inner products along them stay short (they run from the later of the two
 // rows' first columns), so one factorisation costs O(N) either way. The half model, which
-// the Test 30 runs use, has its own path with the fixed band (half_band_step, below).
+// the Test 30 runs use, has its own path with the fixed band (half_band_step, below),
+// factorised as L D Lᵀ without square roots.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -25,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "hinge/polygon_bar_direction.hpp"
 #include "hinge/polygon_chain.hpp"
 
 namespace ringcrush::hinge {
@@ -180,8 +182,10 @@ inline void set_element(double* e, int local, int count, const double (*g)[2], d
 }
 
 // The elements E_0 … E_{N+1} of one ring (y at its node 0, n_ind independent nodes, the bar
-// and hinge damper coefficients) into `elements` (E_{−2} first).
-void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge, double* elements) {
+// and hinge damper coefficients) into `elements` (E_{−2} first); each bar's e also into
+// bar_e (2 per bar) unless null — the implicit membrane's K_m (ring_damper_membrane_kick).
+void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge, double* elements,
+                        double* bar_e) {
   const int last = n_ind - 1;
   auto E = [&](int k) { return elements + kElementSize * (k + kElementPad); };
   auto X = [&](int j) { return y[6 * j]; };
@@ -200,18 +204,34 @@ void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge
       set_element(E(0), 0, 2, g, 0.5 * c_hinge);
     }
   }
-  // Each bar's e and n/ℓ (its square root and divisions) first, then the elements from them.
+  // Each bar's e and n/ℓ (its square root and division, polygon_bar_direction.hpp) first,
+  // then the elements from them.
   double* bars = elements + kElementSize * (2 * last + 2 + 2 * kElementPad);  // [n/ℓ, e] per bar
-  for (int k = 0; k < last; ++k) {
-    const double wx = X(k + 1) - X(k), wy = Y(k + 1) - Y(k);
-    const double lw = wx * wx + wy * wy;
-    const Pair n = Pair{-wy, wx} / lw;
-    const Pair e = Pair{wx, wy} / std::sqrt(lw);
-    bars[4 * k] = n[0];
-    bars[4 * k + 1] = n[1];
-    bars[4 * k + 2] = e[0];
-    bars[4 * k + 3] = e[1];
+  {
+    int k = 0;
+    for (; k + 1 < last; k += 2) {  // two bars to a Pair
+      const BarDirectionPair g = bar_direction(Pair{X(k + 1) - X(k), X(k + 2) - X(k + 1)},
+                                               Pair{Y(k + 1) - Y(k), Y(k + 2) - Y(k + 1)});
+      for (int c = 0; c < 2; ++c) {
+        bars[4 * (k + c)] = g.nx[c];
+        bars[4 * (k + c) + 1] = g.ny[c];
+        bars[4 * (k + c) + 2] = g.ex[c];
+        bars[4 * (k + c) + 3] = g.ey[c];
+      }
+    }
+    for (; k < last; ++k) {
+      const BarDirection g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
+      bars[4 * k] = g.nx;
+      bars[4 * k + 1] = g.ny;
+      bars[4 * k + 2] = g.ex;
+      bars[4 * k + 3] = g.ey;
+    }
   }
+  if (bar_e)
+    for (int k = 0; k < last; ++k) {
+      bar_e[2 * k] = bars[4 * k + 2];
+      bar_e[2 * k + 1] = bars[4 * k + 3];
+    }
   for (int k = 0; k < last; ++k) {
     if (c_bar > 0) {
       const double ex = bars[4 * k + 2], ey = bars[4 * k + 3];
@@ -244,15 +264,12 @@ inline std::size_t element_scratch_size(int n_ind) {
   return static_cast<std::size_t>(kElementSize * (2 * (n_ind - 1) + 2 + 2 * kElementPad) + 4 * (n_ind - 1));
 }
 
-}  // namespace
-
-void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
-  const int last = n_ind_ - 1;
-  const std::ptrdiff_t S = lane_count(n_rings_);  // band: ring r's C(i, i − q) at (6 i + q) S
-  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
-  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
-  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch);
-  const double* E = scratch + kElementSize * kElementPad;
+// Every node's two band rows of one ring from its elements (E at E_0), ring r's C(i, i − q) at
+// band[(6 i + q) S] (band at the ring's lane); kS the lane stride S when known at compile time
+// (0: the argument).
+template <int kS>
+void band_rows(const double* E, int last, double* band, std::ptrdiff_t lanes) {
+  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   for (int j = 0; j <= last; ++j) {
     // Node j's elements in the summation order and its local node in each, with those of
     // nodes j − 1 and j − 2 where the element holds them.
@@ -297,65 +314,84 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
   // Axis nodes' x: row and column cleared.
   for (const int i : {0, 2 * last}) {
     for (int q = 0; q <= kBand; ++q) band[(6 * i + q) * S] = 0.0;
-    for (int r = i + 1; r <= std::min(2 * n_ind_ - 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
+    for (int r = i + 1; r <= std::min(2 * last + 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
   }
 }
 
-// One row i of the band Cholesky of μ + h C, for two rings on the lanes of a Pair, in two
-// parts: row_residual forms L(i, i − q) for q = B…1 and leaves the pivot's radicand in the
-// diagonal slot and the forward substitution's numerator in b; row_pivot takes the square
-// root, 1/L(i, i) and z_i. The rows' entries are at row[q S] (ring-interleaved on S lanes; row
-// i − q at row − 6 q S, its 1/L(i−q, i−q) at inv − q S). B is the row's bandwidth: 5 for a
-// node's y row, 4 for its x row — its column i − 5 is the y of the node three back, which no
-// bar or hinge couples to it, and the factor keeps that zero. Each lane performs the
-// operations of the generic loop over q ≤ 5 in the same order; the terms left out are
-// products with that exact zero (the partial sums are never −0, so their bits are kept). The
-// split lets the rings' square roots and divisions, the long latencies of the chain, run side
-// by side (half_band_step).
+}  // namespace
+
+void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
+  const int last = n_ind_ - 1;
+  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
+  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
+  // The membrane's bar directions for its K_m products (ring_damper_membrane_kick).
+  double* bar_e = implicit_membrane_ && half_ ? membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(ring * last) : nullptr;
+  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch, bar_e);
+  const double* E = scratch + kElementSize * kElementPad;
+  // The band's lane stride a compile-time constant for the usual ring counts: the strided
+  // stores then take immediate offsets (band_rows).
+  switch (lane_count(n_rings_)) {
+    case 2: band_rows<2>(E, last, band, 2); break;
+    case 4: band_rows<4>(E, last, band, 4); break;
+    case 6: band_rows<6>(E, last, band, 6); break;
+    case 8: band_rows<8>(E, last, band, 8); break;
+    default: band_rows<0>(E, last, band, lane_count(n_rings_));
+  }
+}
+
+// One row i of the band LDLᵀ of μ + h C (L unit lower triangular, D diagonal), for two rings
+// on the lanes of a Pair, in two parts: row_residual forms W(i, i − q) = (L D)(i, i − q) and
+// L(i, i − q) = W(i, i − q)/D(i − q) for q = B…1, the pivot D(i) = A(i, i) − Σ W L in the
+// diagonal slot and the forward substitution z_i = b_i − Σ L z in b; row_pivot takes 1/D(i).
+// No square root (the Cholesky factor L D^½ this replaces took one per row): the chain from
+// one row's pivot to the next is a multiplication, a product, a subtraction and the division,
+// so every sum adds the term that waits for the previous row last (q + 1 in W, 1 in D and z)
+// and the others while that row's division runs. The rows' entries are at row[q S]
+// (ring-interleaved on S lanes; row i − q at row − 6 q S, its 1/D(i − q) at inv − q S). B is
+// the row's bandwidth: 5 for a node's y row, 4 for its x row — its column i − 5 is the y of
+// the node three back, which no bar or hinge couples to it, and the factor keeps that zero.
+// The split lets the rings' divisions, the long latency of the chain, run side by side
+// (half_band_solve).
 namespace {
 
 
 template <int B>
 inline void row_residual(const double* c, double h, Pair mass, double* row, const double* inv, double* b,
                          std::ptrdiff_t S) {
-  Pair l[B + 1];
-  for (int q = 0; q <= B; ++q) l[q] = h * load(c + q * S);
-  l[0] += mass;
+  Pair w[B + 1], l[B + 1];
+  for (int q = 0; q <= B; ++q) w[q] = h * load(c + q * S);
+  w[0] += mass;
   for (int q = B; q >= 1; --q) {
     const double* lj = row - 6 * q * S;
-    Pair s = l[q];
-    for (int m = q + 1; m <= B; ++m) s -= l[m] * load(lj + (m - q) * S);
+    Pair s = w[q];
+    for (int m = B; m > q; --m) s -= w[m] * load(lj + (m - q) * S);
+    w[q] = s;
     l[q] = s * load(inv - q * S);
   }
-  Pair s = l[0];
-  for (int m = 1; m <= B; ++m) s -= l[m] * l[m];
+  Pair s = w[0];
+  for (int m = B; m >= 1; --m) s -= w[m] * l[m];
   store(row, s);
   for (int q = 1; q <= B; ++q) store(row + q * S, l[q]);
   Pair z = load(b);
-  for (int m = 1; m <= B; ++m) z -= l[m] * load(b - m * S);
+  for (int m = B; m >= 1; --m) z -= l[m] * load(b - m * S);
   store(b, z);
 }
 
-inline bool row_pivot(double* row, double* inv, double* b) {
+inline bool row_pivot(const double* row, double* inv) {
   const Pair s = load(row);
-  const Pair l = {std::sqrt(s[0]), std::sqrt(s[1])};
-  const Pair inv_l = 1.0 / l;
-  store(row, l);
-  store(inv, inv_l);
-  store(b, load(b) * inv_l);
+  store(inv, 1.0 / s);
   return s[0] > 0.0 && s[1] > 0.0;
 }
 
-// Row i of the backward substitution Lᵀ x = z: the column of L below the diagonal, L(i + m, i)
-// at row[(6 m + m) S]. B as above, of the rows below: a y row's column reaches the x row five
-// down only through that row's structural zero.
+// Row i of the backward substitution Lᵀ x = D⁻¹ z: the column of L below the diagonal,
+// L(i + m, i) at row[(6 m + m) S]. B as above, of the rows below: a y row's column reaches the
+// x row five down only through that row's structural zero.
 template <int B>
 inline void back_row(const double* row, const double* inv, double* b, std::ptrdiff_t S) {
-  Pair s = load(b);
-  for (int m = 1; m <= B; ++m) s -= load(row + 7 * m * S) * load(b + m * S);
-  store(b, s * load(inv));
+  Pair s = load(b) * load(inv);
+  for (int m = B; m >= 1; --m) s -= load(row + 7 * m * S) * load(b + m * S);
+  store(b, s);
 }
-
 
 }  // namespace
 
@@ -367,9 +403,16 @@ inline void back_row(const double* row, const double* inv, double* b, std::ptrdi
 // factorisation; the pad rows (identity before the band, zero after it) stay from the first
 // call, so each call writes only the band.
 void PolygonChain::half_band_step(const double* y, double h, double* v, double* d) {
+  prepare_half_band();
+  assemble_half_bands(y);
+  half_band_solve(h, v, d);
+}
+
+void PolygonChain::prepare_half_band() {
   const int n = 2 * n_ind_, R = n_rings_, S = lane_count(R);
   const auto rows = static_cast<std::size_t>(n + 2 * kBand), lanes = static_cast<std::size_t>(S);
   const std::size_t band_size = 6 * static_cast<std::size_t>(n) * lanes;
+  if (implicit_membrane_) membrane_e_.resize(2 * static_cast<std::size_t>((n_ind_ - 1) * R));
   if (kv_band_c_.size() != band_size + element_scratch_size(n_ind_)) {
     // C(i, i − q) of ring r at (6 i + q) S + r (a spare lane 0), then the element scratch of
     // assemble_half_band.
@@ -382,37 +425,62 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
         if (i < static_cast<std::size_t>(kBand) || r >= static_cast<std::size_t>(R)) kv_band_l_[6 * i * lanes + r] = 1.0;
     kv_inv_diag_.assign(rows * lanes, 1.0);
     kv_b_.assign(rows * lanes, 0.0);
+    kv_inverse_mu_.resize(mu_.size());
+    for (std::size_t i = 0; i < mu_.size(); ++i) kv_inverse_mu_[i] = 1.0 / mu_[i];
   }
-  for (int r = 0; r < R; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
-  double* L = kv_band_l_.data() + 6 * kBand * lanes;
-  double* b = kv_b_.data() + kBand * lanes;
-  double* inv = kv_inv_diag_.data() + kBand * lanes;
-  const double* C = kv_band_c_.data();
+}
+
+void PolygonChain::assemble_half_bands(const double* y) {
+  for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
+}
+
+namespace {
+
+// The band solve's operands: the interleaved band C, factor L, right-hand side b and 1/D
+// (each at its first band row), the masses μ and the state-length v and d.
+struct BandSolve {
+  const double* C;
+  double *L, *b, *inv;
+  const double* mu;
+  int n_ind, rings;
+  double h;
+  double *v, *d;
+};
+
+// half_band_solve on S lanes; kS the lane stride when known at compile time (0: p's), so that
+// the rows' strided loads take immediate offsets and the pointers stay in registers. Returns
+// whether every pivot was positive.
+template <int kS>
+bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
+  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
+  const int R = p.rings, n_ind = p.n_ind;
+  const double *C = p.C, *mu = p.mu;
+  double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
+  auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
   bool definite = true;
-  for (int j = 0; j < n_ind_; ++j) {
-    const bool axis = j == 0 || j == n_ind_ - 1;  // axis nodes' x stays 0
+  for (int j = 0; j < n_ind; ++j) {
+    const bool axis = j == 0 || j == n_ind - 1;  // axis nodes' x stays 0
     const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
-      const std::size_t o = node_offset(r, j) + 2;
-      bx[r] = axis ? 0.0 : mu_[o] * v[o];
-      bx[S + r] = mu_[o] * v[o + 1];
+      const std::size_t o = node(r, j) + 2;
+      bx[r] = axis ? 0.0 : mu[o] * v[o];
+      bx[S + r] = mu[o] * v[o + 1];
     }
     for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
-      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
+      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
+      row_residual<4>(C + at + r, p.h, m, L + at + r, ix + r, bx + r, S);
     }
-    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r, bx + r);
+    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r);
     for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu_[node_offset(r, j) + 2], r + 1 < R ? mu_[node_offset(r + 1, j) + 2] : 1.0};
-      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
+      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
+      row_residual<5>(C + at + 6 * S + r, p.h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
     }
-    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r, bx + S + r);
+    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r);
   }
-  if (!definite)
-    throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
-  for (int j = n_ind_ - 1; j >= 0; --j) {
+  if (!definite) return false;
+  for (int j = n_ind - 1; j >= 0; --j) {
     const double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     const double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
@@ -425,17 +493,45 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
-  const double inv_h = 1.0 / h;
+  const double inv_h = 1.0 / p.h;
   for (int r = 0; r < R; ++r)
-    for (int j = 0; j < n_ind_; ++j) {
-      const std::size_t o = node_offset(r, j) + 2;
+    for (int j = 0; j < n_ind; ++j) {
+      const std::size_t o = node(r, j) + 2;
       const double* x = b + 2 * static_cast<std::ptrdiff_t>(j) * S + r;
-      const double m = mu_[o], vx = x[0], vy = x[S];
-      d[o] = j == 0 || j == n_ind_ - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
+      const double m = mu[o], vx = x[0], vy = x[S];
+      d[o] = j == 0 || j == n_ind - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
       d[o + 1] = m * (v[o + 1] - vy) * inv_h;
       v[o] = vx;
       v[o + 1] = vy;
     }
+  return true;
+}
+
+}  // namespace
+
+void PolygonChain::half_band_solve(double h, double* v, double* d) {
+  const int S = lane_count(n_rings_);
+  const auto lanes = static_cast<std::size_t>(S);
+  const BandSolve p{kv_band_c_.data(),
+                    kv_band_l_.data() + 6 * kBand * lanes,
+                    kv_b_.data() + kBand * lanes,
+                    kv_inv_diag_.data() + kBand * lanes,
+                    mu_.data(),
+                    n_ind_,
+                    n_rings_,
+                    h,
+                    v,
+                    d};
+  bool definite;
+  switch (S) {
+    case 2: definite = solve_band<2>(p, 2); break;
+    case 4: definite = solve_band<4>(p, 4); break;
+    case 6: definite = solve_band<6>(p, 6); break;
+    case 8: definite = solve_band<8>(p, 8); break;
+    default: definite = solve_band<0>(p, S);
+  }
+  if (!definite)
+    throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
 }
 
 void PolygonChain::ring_damper_forces(const double* y, const double* v, double* d) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hinge/polygon_bar_direction.hpp"
 #include "hinge/polygon_chain.hpp"
 
 namespace ringcrush::hinge {
@@ -27,32 +28,44 @@ void PolygonChain::membrane_stiffness_product(const double* y, const double* v, 
   for (int r = 0; r < n_rings_; ++r) {
     double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
     for (int k = 0; k < bars; ++k) {
-      const std::size_t a = node_offset(r, k), b = node_offset(r, (k + 1) % n_ind_);
-      const double bx = y[b] - y[a], by = y[b + 1] - y[a + 1];
-      const double inv = 1.0 / std::sqrt(bx * bx + by * by);
-      e[2 * k] = bx * inv;
-      e[2 * k + 1] = by * inv;
+      const std::size_t a = node_offset(r, k), b = node_offset(r, k + 1 < n_ind_ ? k + 1 : 0);
+      // The band's e (polygon_bar_direction.hpp), so that K_m here is the band's to the bit.
+      const BarDirection g = bar_direction(y[b] - y[a], y[b + 1] - y[a + 1]);
+      e[2 * k] = g.ex;
+      e[2 * k + 1] = g.ey;
     }
   }
   membrane_stiffness_product_again(v, out);
 }
 
+// Node by node: node j's rows take the force of bar j − 1 (at its end) and then bar j's (at
+// its start), (0 + s_{j−1} e_{j−1}) − s_j e_j with s = k_m ℓ̇ — the sums, in their order, of a
+// scatter bar by bar into cleared rows, without the clearing and the read-modify-write. The
+// full ring's node 0 takes bar N − 1 last, as that scatter did.
+
 void PolygonChain::membrane_stiffness_product_again(const double* v, double* out) const {
   const int bars = half_ ? n_ind_ - 1 : n_full_;
   for (int r = 0; r < n_rings_; ++r) {
     const double* e = membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(r * bars);
-    for (int j = 0; j < n_ind_; ++j) {
-      const std::size_t o = node_offset(r, j) + 2;
-      out[o] = out[o + 1] = 0.0;
-    }
+    double fx = 0.0, fy = 0.0;  // s e of the bar before
     for (int k = 0; k < bars; ++k) {
-      const std::size_t a = node_offset(r, k) + 2, b = node_offset(r, (k + 1) % n_ind_) + 2;
+      // The next node without a modulo (an integer division per bar was this loop's latency).
+      const std::size_t a = node_offset(r, k) + 2, b = k + 1 < n_ind_ ? a + 6 : node_offset(r, 0) + 2;
       const double ex = e[2 * k], ey = e[2 * k + 1];
       const double s = k_m_ * (ex * (v[b] - v[a]) + ey * (v[b + 1] - v[a + 1]));
-      out[a] -= s * ex;
-      out[a + 1] -= s * ey;
-      out[b] += s * ex;
-      out[b + 1] += s * ey;
+      const double gx = s * ex, gy = s * ey;
+      out[a] = (0.0 + fx) - gx;  // node 0: no bar before (the full ring's comes below)
+      out[a + 1] = (0.0 + fy) - gy;
+      fx = gx;
+      fy = gy;
+    }
+    const std::size_t z = node_offset(r, bars < n_ind_ ? bars : 0) + 2;  // the last bar's end node
+    if (half_) {
+      out[z] = 0.0 + fx;
+      out[z + 1] = 0.0 + fy;
+    } else {
+      out[z] += fx;
+      out[z + 1] += fy;
     }
     if (half_) {
       out[node_offset(r, 0) + 2] = 0.0;
@@ -75,6 +88,41 @@ void PolygonChain::ring_damper_membrane_step(const double* y, double h, double* 
     throw;
   }
   membrane_h_ = 0.0;
+}
+
+// The half model: one assembly gives the band and K_m's bar directions (the membrane's own
+// pass, a square root and a division per bar, is gone), the two products run on them.
+void PolygonChain::ring_damper_membrane_kick(const double* y, double h, const double* w, double* v, double* d,
+                                             double* kw, double* kv) {
+  if (!(h > 0.0 && std::isfinite(h)))
+    throw std::invalid_argument("PolygonChain::ring_damper_membrane_kick: h must be positive and finite, got " +
+                                std::to_string(h));
+  if (!implicit_membrane_)
+    throw std::logic_error("PolygonChain::ring_damper_membrane_kick: set_implicit_membrane(true) first");
+  if (kv_inverse_mu_.size() != mu_.size()) {
+    kv_inverse_mu_.resize(mu_.size());
+    for (std::size_t i = 0; i < mu_.size(); ++i) kv_inverse_mu_[i] = 1.0 / mu_[i];
+  }
+  if (half_) {
+    prepare_half_band();
+    membrane_h_ = h;  // c_b + h k_m in the bars' band entries
+    assemble_half_bands(y);
+    membrane_h_ = 0.0;
+    membrane_stiffness_product_again(w, kw);
+  } else {
+    membrane_stiffness_product(y, w, kw);
+  }
+  // μ v* + h² K_m w as μ (v* + h² K_m w / μ): the right-hand side of the solve, and the v* its
+  // d = μ (v* − v)/h is taken from.
+  for (int r = 0; r < n_rings_; ++r)
+    for (int j = 0; j < n_ind_; ++j)
+      for (std::size_t i = node_offset(r, j) + 2; i < node_offset(r, j) + 4; ++i)
+        v[i] += h * h * kw[i] * kv_inverse_mu_[i];
+  if (half_)
+    half_band_solve(h, v, d);
+  else
+    ring_damper_membrane_step(y, h, v, d);
+  membrane_stiffness_product_again(v, kv);  // the positions are y's still
 }
 
 }  // namespace ringcrush::hinge
