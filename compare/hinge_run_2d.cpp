@@ -38,6 +38,7 @@ Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   s.membrane_stiffness_scale = scene.hinge.level2_membrane_stiffness_scale.value_or(membrane_fallback);
   s.contact_stiffness_scale *= penalty;
   s.tie_stiffness_scale *= penalty;
+  if (implicit) s.central_difference_safety = kImplicitMembraneSafety;
   s.membrane_damping_ratio = scene.hinge.membrane_damping_ratio.value_or(s.membrane_damping_ratio);
   s.hinge_damping_ratio = scene.hinge.hinge_damping_ratio.value_or(s.hinge_damping_ratio);
   return s;
