@@ -173,7 +173,7 @@ TEST(PolygonStiffTermScale, SceneKeysReachTheChainInput) {
   EXPECT_EQ(cd.membrane_stiffness_scale, 1.0);
   EXPECT_EQ(cd.contact_stiffness_scale, kImplicitMembranePenaltyScale * Level2Settings{}.contact_stiffness_scale);
   EXPECT_EQ(cd.tie_stiffness_scale, kImplicitMembranePenaltyScale * Level2Settings{}.tie_stiffness_scale);
-  // The step safety: 1.0 with the implicit membrane (h51), 0.8 for the explicit membrane and the
+  // The step safety: 0.9 with the implicit membrane (h51, h53), 0.8 for the explicit membrane and the
   // raw settings, which diverge at 1.0 (PolygonCentralDifference.SameFlagsAsIdaOnAShortChain).
   EXPECT_EQ(cd_settings.central_difference_safety, kImplicitMembraneSafety);
   EXPECT_EQ(Level2Settings{}.central_difference_safety, 0.8);
