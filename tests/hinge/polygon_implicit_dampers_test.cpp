@@ -36,23 +36,7 @@ std::vector<double> lifted_state(const PolygonChain& chain) {
 
 using two_ring_chain::velocity_rows;
 
-// C read off the explicit damper forces: φ is linear in the node velocities through the
-// dampers alone here, so column m is −(φ(v = e_m) − φ(0)) on the velocity rows.
-Eigen::MatrixXd damping_matrix(PolygonChain& chain, std::vector<double> y, const std::vector<std::size_t>& rows) {
-  const auto n = static_cast<Eigen::Index>(rows.size());
-  for (const auto i : rows) y[i] = 0.0;
-  std::vector<double> phi0(y.size()), phi(y.size());
-  chain.generalised_forces(0.0, y.data(), phi0.data());
-  Eigen::MatrixXd C(n, n);
-  for (Eigen::Index m = 0; m < n; ++m) {
-    y[rows[static_cast<std::size_t>(m)]] = 1.0;
-    chain.generalised_forces(0.0, y.data(), phi.data());
-    y[rows[static_cast<std::size_t>(m)]] = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i)
-      C(i, m) = -(phi[rows[static_cast<std::size_t>(i)]] - phi0[rows[static_cast<std::size_t>(i)]]);
-  }
-  return C;
-}
+using two_ring_chain::damping_matrix;
 
 }  // namespace
 
