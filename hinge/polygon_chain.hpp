@@ -537,9 +537,6 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   void prepare_half_band();
   void assemble_half_bands(const double* y);
   void half_band_solve(double h, double* v, double* d);
-  // The same solve with the membrane kick's right-hand side formed in its first pass: each node
-  // row's v* += h² (K_m w)/μ (kw = K_m w; ring_damper_membrane_kick) before b = μ v*.
-  void half_band_solve(double h, const double* kw, double* v, double* d);
   std::vector<double> kv_inverse_mu_;  // 1/μ of every row (the membrane kick's h² K_m w / μ)
 };
 

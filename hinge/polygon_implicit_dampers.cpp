@@ -265,8 +265,7 @@ void PolygonChain::assemble_half_bands(const double* y) {
 namespace {
 
 // The band solve's operands: the interleaved band C, factor L, right-hand side b and 1/D
-// (each at its first band row), the masses μ and the state-length v and d; with the membrane
-// kick, K_m w and 1/μ (state-length; kw null otherwise).
+// (each at its first band row), the masses μ and the state-length v and d.
 struct BandSolve {
   const double* C;
   double *L, *b, *inv;
@@ -274,7 +273,6 @@ struct BandSolve {
   int n_ind, rings;
   double h;
   double *v, *d;
-  const double *kw = nullptr, *inv_mu = nullptr;
 };
 
 // half_band_solve on S lanes; kS the lane stride when known at compile time (0: p's), so that
@@ -284,10 +282,9 @@ template <int kS>
 bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
   const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   const int R = p.rings, n_ind = p.n_ind;
+  const double h = p.h;  // a local: a store through the arrays could alias p.h for the compiler
   const double *C = p.C, *mu = p.mu;
   double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
-  const double *kw = p.kw, *inv_mu = p.inv_mu;
-  const double h2 = p.h * p.h;
   auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
   bool definite = true;
   for (int j = 0; j < n_ind; ++j) {
@@ -297,21 +294,17 @@ bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
     double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
     for (int r = 0; r < R; ++r) {
       const std::size_t o = node(r, j) + 2;
-      if (kw) {  // the kick's v* + h² K_m w/μ, as its own pass over the rows formed it
-        v[o] += h2 * kw[o] * inv_mu[o];
-        v[o + 1] += h2 * kw[o + 1] * inv_mu[o + 1];
-      }
       bx[r] = axis ? 0.0 : mu[o] * v[o];
       bx[S + r] = mu[o] * v[o + 1];
     }
     for (int r = 0; r < S; r += 2) {
       const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<4>(C + at + r, p.h, m, L + at + r, ix + r, bx + r, S);
+      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r);
     for (int r = 0; r < S; r += 2) {
       const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<5>(C + at + 6 * S + r, p.h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
+      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r);
   }
@@ -329,7 +322,7 @@ bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
-  const double inv_h = 1.0 / p.h;
+  const double inv_h = 1.0 / h;
   for (int r = 0; r < R; ++r)
     for (int j = 0; j < n_ind; ++j) {
       const std::size_t o = node(r, j) + 2;
@@ -345,9 +338,7 @@ bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
 
 }  // namespace
 
-void PolygonChain::half_band_solve(double h, double* v, double* d) { half_band_solve(h, nullptr, v, d); }
-
-void PolygonChain::half_band_solve(double h, const double* kw, double* v, double* d) {
+void PolygonChain::half_band_solve(double h, double* v, double* d) {
   const int S = lane_count(n_rings_);
   const auto lanes = static_cast<std::size_t>(S);
   const BandSolve p{kv_band_c_.data(),
@@ -359,9 +350,7 @@ void PolygonChain::half_band_solve(double h, const double* kw, double* v, double
                     n_rings_,
                     h,
                     v,
-                    d,
-                    kw,
-                    kv_inverse_mu_.data()};
+                    d};
   bool definite;
   switch (S) {
     case 2: definite = solve_band<2>(p, 2); break;

@@ -113,16 +113,15 @@ void PolygonChain::ring_damper_membrane_kick(const double* y, double h, const do
     membrane_stiffness_product(y, w, kw);
   }
   // μ v* + h² K_m w as μ (v* + h² K_m w / μ): the right-hand side of the solve, and the v* its
-  // d = μ (v* − v)/h is taken from — in the half model formed in the solve's first pass.
-  if (half_) {
-    half_band_solve(h, kw, v, d);
-  } else {
-    for (int r = 0; r < n_rings_; ++r)
-      for (int j = 0; j < n_ind_; ++j)
-        for (std::size_t i = node_offset(r, j) + 2; i < node_offset(r, j) + 4; ++i)
-          v[i] += h * h * kw[i] * kv_inverse_mu_[i];
+  // d = μ (v* − v)/h is taken from.
+  for (int r = 0; r < n_rings_; ++r)
+    for (int j = 0; j < n_ind_; ++j)
+      for (std::size_t i = node_offset(r, j) + 2; i < node_offset(r, j) + 4; ++i)
+        v[i] += h * h * kw[i] * kv_inverse_mu_[i];
+  if (half_)
+    half_band_solve(h, v, d);
+  else
     ring_damper_membrane_step(y, h, v, d);
-  }
   membrane_stiffness_product_again(v, kv);  // the positions are y's still
 }
 
