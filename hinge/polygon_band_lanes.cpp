@@ -26,6 +26,7 @@
 
 #include <algorithm>
 
+#include "hinge/polygon_bar_direction.hpp"
 #include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
@@ -54,13 +55,11 @@ template <>
 struct Lanes<double> {
   static constexpr int W = 1;
   static double load(const double* p) { return *p; }
-  static double sqrt(double x) { return std::sqrt(x); }
 };
 template <>
 struct Lanes<Pair> {
   static constexpr int W = 2;
   [[gnu::always_inline]] static Pair load(const double* p) { return lanes::load(p); }
-  [[gnu::always_inline]] static Pair sqrt(Pair x) { return lanes::sqrt(x); }
 };
 
 // Writes the Live lanes of v (all but a spare one) to p.
@@ -88,7 +87,7 @@ template <class V, int Count>
 // The elements E_0 … E_{N+1} of W rings (node j's x, y at px, py[j W]; n_ind independent
 // nodes; the bar and hinge damper coefficients) into `elements` (E_{−2} first); each bar's n/ℓ
 // and e into bars ([nx, ny, ex, ey] of bar k at (4 k) W). Each bar's direction from one
-// division and one square root (polygon_bar_direction.hpp's form).
+// division and one square root (bar_direction, whose e the membrane's K_m products take too).
 template <class V>
 [[gnu::always_inline]] inline void band_elements(const double* px, const double* py, int n_ind, double c_bar,
                                                  double c_hinge, double* elements, double* bars) {
@@ -110,13 +109,11 @@ template <class V>
   }
   // Each bar's e and n/ℓ first, then the elements from them.
   for (int k = 0; k < last; ++k) {
-    const V wx = X(k + 1) - X(k), wy = Y(k + 1) - Y(k);
-    const V r = 1.0 / (wx * wx + wy * wy);
-    const V s = O::sqrt(r);
-    put(bars + (4 * k) * W, -wy * r);
-    put(bars + (4 * k + 1) * W, wx * r);
-    put(bars + (4 * k + 2) * W, wx * s);
-    put(bars + (4 * k + 3) * W, wy * s);
+    const auto g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
+    put(bars + (4 * k) * W, g.nx);
+    put(bars + (4 * k + 1) * W, g.ny);
+    put(bars + (4 * k + 2) * W, g.ex);
+    put(bars + (4 * k + 3) * W, g.ey);
   }
   for (int k = 0; k < last; ++k) {
     const V ex = O::load(bars + (4 * k + 2) * W), ey = O::load(bars + (4 * k + 3) * W);
