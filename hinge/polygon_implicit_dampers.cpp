@@ -252,8 +252,15 @@ void PolygonChain::prepare_half_band() {
   }
 }
 
+// Not in a build with FMA (RINGCRUSH_NATIVE): GCC may fuse a product into a sum there, on the
+// lanes differently from the ring-by-ring form (as ring_lanes_apply).
 void PolygonChain::assemble_half_bands(const double* y) {
-  if (!ring_lanes_) {  // the reference: ring by ring
+#ifdef __FMA__
+  const bool lanes = false;
+#else
+  const bool lanes = ring_lanes_;
+#endif
+  if (!lanes) {  // the reference: ring by ring
     for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
     return;
   }
