@@ -5,8 +5,9 @@
 // root, where w/√(ℓ²) and (−w_y, w_x)/ℓ² took three divisions, and the membrane's product a
 // fourth with another square root. The divider bounds these loops (README, h42): the
 // division and the square root are the long latencies. e and n/ℓ are each within ≈ 2 ulp of
-// the quotients. The damper band and K_m take e from here, so the membrane's part of the
-// band and its products use the same bits.
+// the quotients. The damper band (one ring, or two rings on the lanes of a Pair:
+// polygon_band_lanes.cpp) and K_m take e from here, so the membrane's part of the band and its
+// products use the same bits.
 #pragma once
 
 #include <cmath>
@@ -26,8 +27,8 @@ inline BarDirection bar_direction(double wx, double wy) {
   return {-wy * r, wx * r, wx * s, wy * s};
 }
 
-// Two bars on the lanes of a Pair (one divpd and one sqrtpd for both): each lane the scalar
-// form's operations, so the same bits.
+// Two bars (two rings' bars k) on the lanes of a Pair (one divpd and one sqrtpd for both):
+// each lane the scalar form's operations, so the same bits.
 struct BarDirectionPair {
   lanes::Pair nx, ny, ex, ey;
 };

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "hinge/polygon_bar_direction.hpp"
+#include "hinge/polygon_band_lanes.hpp"
 #include "hinge/polygon_chain.hpp"
 
 namespace ringcrush::hinge {
@@ -131,38 +131,15 @@ void PolygonChain::assemble_ring_dampers(int ring, const double* y) {
 
 // --- The half model: an open band, assembled from y without the mirror expansion ---------
 //
-// ½ EᵀC_full E element by element: a bar or hinge of the first half and its mirror image
-// fold onto the same independent nodes with equal contributions, so bars 0…N/2 − 1 and
-// hinges 1…N/2 − 1 enter once with weight 1; the hinges on the axis (0 and N/2) are their own
-// mirror images and enter with weight ½, their gradient folded (the mirrored node's part,
-// x sign flipped, added to its independent twin). The axis nodes' x rows and columns are
-// cleared at the end (those velocities stay 0).
-//
-// An entry of C is the sum over the elements on both its nodes of (w c gₚ) g_q, gₚ the row's
-// gradient component, g_q the column's. The sums run in the element order
-//   H0, B0, B1, H1, B2, H2, …, B_{N/2−1}, H_{N/2−1}, H_{N/2}
-// (H hinges, B bars; the order of the element-by-element scatter this replaces, whose bits
-// they keep), and a node is touched by at most five of them: with the elements numbered in
-// that order, E_0 = H0, E_1 = B0, E_{2k} = B_k, E_{2k+1} = H_k (0 < k < N/2), E_{N} empty,
-// E_{N+1} = H_{N/2}, node j's are E_{2j−2}, E_{2j−1}, E_{2j}, E_{2j+1}, E_{2j+3} in that
-// order — those two before node j's B_{j−1}, H_{j−1} pair at the ring's ends included. So
-// each element's scaled gradients are formed once (half_band_elements) and each node's two
-// band rows summed in registers and written once (no clearing, no read-modify-write).
+// polygon_band_lanes.cpp assembles it (the element order and the sums there), all rings two to
+// a vector where the ring lanes are on (set_ring_lanes), ring by ring otherwise.
 namespace {
 
 constexpr int kBand = 5;  // lower bandwidth: a hinge couples nodes two apart, 2 dofs each
 
-// One element's w c G and G (x, y on three local nodes), 12 doubles: kWg at 0, kG at 6. An
-// even-numbered element's local node 0 is node k of E_{2k}, an odd one's is node k − 1 of
-// E_{2k+1}; E_1 = B0 is on its local nodes 1, 2, and the unused local nodes stay 0.
-constexpr int kElementSize = 12, kWg = 0, kG = 6;
-
-constexpr int kElementPad = 2;  // empty elements before E_0 (for nodes 0 and 1)
-
 // Two doubles on the lanes of one SSE2 vector (GCC's vector extension, as fe/element/
-// element_lanes.hpp): two rings' band rows in half_band_step, an element gradient's two
-// divisions here. Each lane computes as the scalar code does (IEEE, no contraction on the
-// default x86-64 target), so the bits are the same.
+// element_lanes.hpp): two rings' band rows in half_band_step. Each lane computes as the scalar
+// code does (IEEE, no contraction on the default x86-64 target), so the bits are the same.
 typedef double Pair __attribute__((vector_size(16)));
 // Two doubles anywhere in memory, read or written as one vector.
 typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
@@ -171,172 +148,17 @@ inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 
 // The rings' lanes in the interleaved band arrays (half_band_step): an even count, two rings
 // to a Pair, with a spare lane (identity, b = 0) when the ring count is odd.
-inline int lane_count(int rings) { return rings + rings % 2; }
-
-inline void set_element(double* e, int local, int count, const double (*g)[2], double wc) {
-  for (int p = 0; p < count; ++p)
-    for (int c = 0; c < 2; ++c) {
-      e[kG + 2 * (local + p) + c] = g[p][c];
-      e[kWg + 2 * (local + p) + c] = wc * g[p][c];
-    }
-}
-
-// The elements E_0 … E_{N+1} of one ring (y at its node 0, n_ind independent nodes, the bar
-// and hinge damper coefficients) into `elements` (E_{−2} first); each bar's e also into
-// bar_e (2 per bar) unless null — the implicit membrane's K_m (ring_damper_membrane_kick).
-void half_band_elements(const double* y, int n_ind, double c_bar, double c_hinge, double* elements,
-                        double* bar_e) {
-  const int last = n_ind - 1;
-  auto E = [&](int k) { return elements + kElementSize * (k + kElementPad); };
-  auto X = [&](int j) { return y[6 * j]; };
-  auto Y = [&](int j) { return y[6 * j + 1]; };
-  // Bar vectors j → j + 1 of the independent nodes, and n/ℓ = (−u_y, u_x)/|u|² of each.
-  double ax = 0, ay = 0;  // n/ℓ of the previous bar
-  // Hinge 0 (weight ½): bars N−1 (from the mirror of node 1 to node 0) and 0.
-  {
-    const double ux = X(0) + X(1), uy = Y(0) - Y(1);  // p0 − (−x1, y1)
-    const double wx = X(1) - X(0), wy = Y(1) - Y(0);
-    const double lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
-    const Pair a0 = Pair{-uy, ux} / lu, b0 = Pair{-wy, wx} / lw;
-    const double a0x = a0[0], a0y = a0[1], bx = b0[0], by = b0[1];
-    if (c_hinge > 0) {
-      const double g[2][2] = {{a0x + bx, a0y + by}, {a0x - bx, -a0y - by}};
-      set_element(E(0), 0, 2, g, 0.5 * c_hinge);
-    }
-  }
-  // Each bar's e and n/ℓ (its square root and division, polygon_bar_direction.hpp) first,
-  // then the elements from them.
-  double* bars = elements + kElementSize * (2 * last + 2 + 2 * kElementPad);  // [n/ℓ, e] per bar
-  {
-    int k = 0;
-    for (; k + 1 < last; k += 2) {  // two bars to a Pair
-      const BarDirectionPair g = bar_direction(Pair{X(k + 1) - X(k), X(k + 2) - X(k + 1)},
-                                               Pair{Y(k + 1) - Y(k), Y(k + 2) - Y(k + 1)});
-      for (int c = 0; c < 2; ++c) {
-        bars[4 * (k + c)] = g.nx[c];
-        bars[4 * (k + c) + 1] = g.ny[c];
-        bars[4 * (k + c) + 2] = g.ex[c];
-        bars[4 * (k + c) + 3] = g.ey[c];
-      }
-    }
-    for (; k < last; ++k) {
-      const BarDirection g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
-      bars[4 * k] = g.nx;
-      bars[4 * k + 1] = g.ny;
-      bars[4 * k + 2] = g.ex;
-      bars[4 * k + 3] = g.ey;
-    }
-  }
-  if (bar_e)
-    for (int k = 0; k < last; ++k) {
-      bar_e[2 * k] = bars[4 * k + 2];
-      bar_e[2 * k + 1] = bars[4 * k + 3];
-    }
-  for (int k = 0; k < last; ++k) {
-    if (c_bar > 0) {
-      const double ex = bars[4 * k + 2], ey = bars[4 * k + 3];
-      const double g[2][2] = {{-ex, -ey}, {ex, ey}};
-      if (k == 0)
-        set_element(E(1), 1, 2, g, c_bar);
-      else
-        set_element(E(2 * k), 0, 2, g, c_bar);
-    }
-    const double bx = bars[4 * k], by = bars[4 * k + 1];
-    if (k > 0 && c_hinge > 0) {  // hinge k on nodes k − 1, k, k + 1
-      const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
-      set_element(E(2 * k + 1), 0, 3, g, c_hinge);
-    }
-    ax = bx;
-    ay = by;
-  }
-  // Hinge N/2 (weight ½): bar N/2 − 1 and bar N/2 to the mirror of node N/2 − 1.
-  if (c_hinge > 0) {
-    const double wx = -X(last - 1) - X(last), wy = Y(last - 1) - Y(last);
-    const Pair b = Pair{-wy, wx} / (wx * wx + wy * wy);
-    const double bx = b[0], by = b[1];
-    const double g[2][2] = {{-ax + bx, -ay - by}, {ax + bx, ay + by}};
-    set_element(E(2 * last + 1), 0, 2, g, 0.5 * c_hinge);
-  }
-}
-
-// Elements of one ring (kElementSize each, E_{−2} … E_{N+3}), then 4 per bar.
-inline std::size_t element_scratch_size(int n_ind) {
-  return static_cast<std::size_t>(kElementSize * (2 * (n_ind - 1) + 2 + 2 * kElementPad) + 4 * (n_ind - 1));
-}
-
-// Every node's two band rows of one ring from its elements (E at E_0), ring r's C(i, i − q) at
-// band[(6 i + q) S] (band at the ring's lane); kS the lane stride S when known at compile time
-// (0: the argument).
-template <int kS>
-void band_rows(const double* E, int last, double* band, std::ptrdiff_t lanes) {
-  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
-  for (int j = 0; j <= last; ++j) {
-    // Node j's elements in the summation order and its local node in each, with those of
-    // nodes j − 1 and j − 2 where the element holds them.
-    const double* a = E + kElementSize * (2 * j - 2);  // B_{j−1} (H0 for j = 1): j at 1, j − 1 at 0
-    const double* b = E + kElementSize * (2 * j - 1);  // H_{j−1} (B0 for j = 1): j at 2, j − 1 at 1, j − 2 at 0
-    const double* c = E + kElementSize * (2 * j);      // B_j (H0 for j = 0): j at 0
-    const double* d = E + kElementSize * (2 * j + 1);  // H_j (B0 for 0, H_{N/2} for the last): j at 1, j − 1 at 0
-    const double* e = E + kElementSize * (2 * j + 3);  // H_{j+1}: j at 0
-    double* rx = band + 12 * j * S;
-    double* ry = rx + 6 * S;
-    // The x and y rows on the two lanes of a Pair: the diagonal block's (x, x) and (y, y),
-    // then nodes j − 1 and j − 2, y column then x, at distances 1 … 4 (x row) and 2 … 5 (y).
-    Pair s = {0.0, 0.0};
-    s += load(a + kWg + 2) * load(a + kG + 2);
-    s += load(b + kWg + 4) * load(b + kG + 4);
-    s += load(c + kWg) * load(c + kG);
-    s += load(d + kWg + 2) * load(d + kG + 2);
-    s += load(e + kWg) * load(e + kG);
-    rx[0] = s[0];
-    ry[0] = s[1];
-    for (int cc = 1; cc >= 0; --cc) {
-      Pair t = {0.0, 0.0};
-      t += load(a + kWg + 2) * a[kG + cc];
-      t += load(b + kWg + 4) * b[kG + 2 + cc];
-      t += load(d + kWg + 2) * d[kG + cc];
-      rx[(2 - cc) * S] = t[0];
-      ry[(3 - cc) * S] = t[1];
-      const Pair u = 0.0 + load(b + kWg + 4) * b[kG + cc];  // from 0 as the sums: −0 → +0
-      rx[(4 - cc) * S] = u[0];
-      ry[(5 - cc) * S] = u[1];
-    }
-    {  // (y, x) of node j
-      double yx = 0.0;
-      yx += a[kWg + 3] * a[kG + 2];
-      yx += b[kWg + 5] * b[kG + 4];
-      yx += c[kWg + 1] * c[kG + 0];
-      yx += d[kWg + 3] * d[kG + 2];
-      yx += e[kWg + 1] * e[kG + 0];
-      ry[S] = yx;
-    }
-  }
-  // Axis nodes' x: row and column cleared.
-  for (const int i : {0, 2 * last}) {
-    for (int q = 0; q <= kBand; ++q) band[(6 * i + q) * S] = 0.0;
-    for (int r = i + 1; r <= std::min(2 * last + 1, i + kBand); ++r) band[(6 * r + (r - i)) * S] = 0.0;
-  }
-}
+inline int lane_count(int rings) { return band_lane_count(rings); }
 
 }  // namespace
 
 void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
-  const int last = n_ind_ - 1;
-  // The element scratch is the tail of kv_band_c_ (half_band_step), its unused slots 0.
-  double* scratch = kv_band_c_.data() + kv_band_c_.size() - element_scratch_size(n_ind_);
+  // The element scratch is the tail of kv_band_c_ (prepare_half_band), its unused slots 0.
+  double* scratch = kv_band_c_.data() + kv_band_c_.size() - ring_band_scratch_size(n_ind_);
   // The membrane's bar directions for its K_m products (ring_damper_membrane_kick).
-  double* bar_e = implicit_membrane_ && half_ ? membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(ring * last) : nullptr;
-  half_band_elements(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, scratch, bar_e);
-  const double* E = scratch + kElementSize * kElementPad;
-  // The band's lane stride a compile-time constant for the usual ring counts: the strided
-  // stores then take immediate offsets (band_rows).
-  switch (lane_count(n_rings_)) {
-    case 2: band_rows<2>(E, last, band, 2); break;
-    case 4: band_rows<4>(E, last, band, 4); break;
-    case 6: band_rows<6>(E, last, band, 6); break;
-    case 8: band_rows<8>(E, last, band, 8); break;
-    default: band_rows<0>(E, last, band, lane_count(n_rings_));
-  }
+  double* bar_e = implicit_membrane_ ? membrane_e_.data() + 2 * static_cast<std::ptrdiff_t>(ring * (n_ind_ - 1)) : nullptr;
+  assemble_ring_band(y + node_offset(ring, 0), n_ind_, bar_matrix_coefficient(), c_hinge_, band, lane_count(n_rings_),
+                     scratch, bar_e);
 }
 
 // One row i of the band LDLᵀ of μ + h C (L unit lower triangular, D diagonal), for two rings
@@ -413,10 +235,10 @@ void PolygonChain::prepare_half_band() {
   const auto rows = static_cast<std::size_t>(n + 2 * kBand), lanes = static_cast<std::size_t>(S);
   const std::size_t band_size = 6 * static_cast<std::size_t>(n) * lanes;
   if (implicit_membrane_) membrane_e_.resize(2 * static_cast<std::size_t>((n_ind_ - 1) * R));
-  if (kv_band_c_.size() != band_size + element_scratch_size(n_ind_)) {
+  if (kv_band_c_.size() != band_size + ring_band_scratch_size(n_ind_)) {
     // C(i, i − q) of ring r at (6 i + q) S + r (a spare lane 0), then the element scratch of
     // assemble_half_band.
-    kv_band_c_.assign(band_size + element_scratch_size(n_ind_), 0.0);
+    kv_band_c_.assign(band_size + ring_band_scratch_size(n_ind_), 0.0);
     // The factors, L(i, i − q) of ring r at (6 i + q) S + r: leading pad rows I, trailing
     // ones 0, so that the fixed-width rows need no bounds; a spare lane is I throughout.
     kv_band_l_.assign(6 * rows * lanes, 0.0);
@@ -430,8 +252,21 @@ void PolygonChain::prepare_half_band() {
   }
 }
 
+// Not in a build with FMA (RINGCRUSH_NATIVE): GCC may fuse a product into a sum there, on the
+// lanes differently from the ring-by-ring form (as ring_lanes_apply).
 void PolygonChain::assemble_half_bands(const double* y) {
-  for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
+#ifdef __FMA__
+  const bool lanes = false;
+#else
+  const bool lanes = ring_lanes_;
+#endif
+  if (!lanes) {  // the reference: ring by ring
+    for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
+    return;
+  }
+  double* scratch = kv_band_c_.data() + kv_band_c_.size() - ring_band_scratch_size(n_ind_);
+  assemble_ring_bands(y, 6 * static_cast<std::size_t>(n_ind_), n_rings_, n_ind_, bar_matrix_coefficient(), c_hinge_,
+                      kv_band_c_.data(), scratch, implicit_membrane_ ? membrane_e_.data() : nullptr);
 }
 
 namespace {
@@ -454,6 +289,7 @@ template <int kS>
 bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
   const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   const int R = p.rings, n_ind = p.n_ind;
+  const double h = p.h;  // a local: a store through the arrays could alias p.h for the compiler
   const double *C = p.C, *mu = p.mu;
   double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
   auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
@@ -470,12 +306,12 @@ bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
     }
     for (int r = 0; r < S; r += 2) {
       const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<4>(C + at + r, p.h, m, L + at + r, ix + r, bx + r, S);
+      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r);
     for (int r = 0; r < S; r += 2) {
       const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<5>(C + at + 6 * S + r, p.h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
+      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
     }
     for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r);
   }
@@ -493,7 +329,7 @@ bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
-  const double inv_h = 1.0 / p.h;
+  const double inv_h = 1.0 / h;
   for (int r = 0; r < R; ++r)
     for (int j = 0; j < n_ind; ++j) {
       const std::size_t o = node(r, j) + 2;
