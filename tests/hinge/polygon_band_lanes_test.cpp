@@ -18,34 +18,10 @@ using namespace ringcrush::hinge;
 #ifndef __FMA__  // a build with FMA keeps the ring-by-ring band (polygon_implicit_dampers.cpp)
 namespace {
 
-// `rings` Test 30 rings two diameters apart (half model), nothing touching.
-PolygonChainInput apart(int rings) {
-  PolygonChainInput in = two_ring_chain::input(PolygonJoint::Free);
-  in.rings = rings;
-  in.pitch_m = 2.0 * in.outer_diameter_m;
-  in.half_symmetry = true;
-  in.fixed_target = false;
-  in.impactor_velocity_m_s = 0.0;
-  return in;
-}
+using two_ring_chain::distorted;
 
-// Every ring distorted at random (nodes moved by up to 0.3 ℓ0) and moving at random; the
-// axis nodes' x held.
-std::vector<double> distorted(const PolygonChain& chain, std::mt19937& gen) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto y = chain.initial_state();
-  y[chain.body_offset(0)] += 0.01;
-  for (int r = 0; r < chain.ring_count(); ++r)
-    for (int j = 0; j < chain.independent_nodes(); ++j) {
-      const auto o = chain.node_offset(r, j);
-      const bool axis = j == 0 || j == chain.independent_nodes() - 1;
-      if (!axis) y[o] += 0.3 * chain.bar_length() * u(gen);
-      y[o + 1] += 0.3 * chain.bar_length() * u(gen);
-      y[o + 2] = axis ? 0.0 : 10.0 * u(gen);
-      y[o + 3] = 10.0 * u(gen);
-    }
-  return y;
-}
+// `rings` Test 30 rings two diameters apart (half model), nothing touching.
+PolygonChainInput apart(int rings) { return two_ring_chain::apart(rings, true); }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <random>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -73,6 +74,37 @@ inline Eigen::MatrixXd damping_matrix(PolygonChain& chain, std::vector<double> y
       C(i, m) = -(phi[rows[static_cast<std::size_t>(i)]] - phi0[rows[static_cast<std::size_t>(i)]]);
   }
   return C;
+}
+
+// `rings` Test 30 rings two diameters apart, nothing touching (the impactor lifted 1 cm, no
+// target): the only velocity-dependent forces are the rings' Kelvin–Voigt dampers (ratio 1).
+inline PolygonChainInput apart(int rings, bool half) {
+  PolygonChainInput in = input(PolygonJoint::Free);
+  in.rings = rings;
+  in.pitch_m = 2.0 * in.outer_diameter_m;
+  in.half_symmetry = half;
+  in.fixed_target = false;
+  in.impactor_velocity_m_s = 0.0;
+  return in;
+}
+
+// Every ring distorted at random (nodes moved by up to 0.3 ℓ0: all bar directions and hinge
+// gradients differ) and moving at random (10 m/s); the axis nodes' x held.
+inline std::vector<double> distorted(const PolygonChain& chain, std::mt19937& gen) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto y = chain.initial_state();
+  y[chain.body_offset(0)] += 0.01;
+  const bool half = chain.input().half_symmetry;
+  for (int r = 0; r < chain.ring_count(); ++r)
+    for (int j = 0; j < chain.independent_nodes(); ++j) {
+      const auto o = chain.node_offset(r, j);
+      const bool axis = half && (j == 0 || j == chain.independent_nodes() - 1);
+      if (!axis) y[o] += 0.3 * chain.bar_length() * u(gen);
+      y[o + 1] += 0.3 * chain.bar_length() * u(gen);
+      y[o + 2] = axis ? 0.0 : 10.0 * u(gen);
+      y[o + 3] = 10.0 * u(gen);
+    }
+  return y;
 }
 
 }  // namespace ringcrush::hinge::two_ring_chain
