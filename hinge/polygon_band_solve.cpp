@@ -173,10 +173,11 @@ template <int kS, int Width>
     const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
     double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
     double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    for (int r = 0; r < R; ++r) {
+    for (int r = 0; r < R; ++r) {  // μ v* of the node's two rows as one Pair (the x row's μ for both)
       const std::size_t o = node(r, j) + 2;
-      bx[r] = axis ? 0.0 : mu[o] * v[o];
-      bx[S + r] = mu[o] * v[o + 1];
+      const Pair mv = mu[o] * lanes::load(v + o);
+      bx[r] = axis ? 0.0 : mv[0];
+      bx[S + r] = mv[1];
     }
     Residual<4> x_row{C + at, mu, L + at, ix, bx, h, S, n_ind, R, j};
     each_lane_group<Width>(x_row, S, R);
@@ -198,16 +199,17 @@ template <int kS, int Width>
   // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
   // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
   // only the damper work, so the motion keeps its bits.
+  // A node's two rows as one Pair.
   const double inv_h = 1.0 / h;
   for (int r = 0; r < R; ++r)
     for (int j = 0; j < n_ind; ++j) {
       const std::size_t o = node(r, j) + 2;
       const double* x = b + 2 * static_cast<std::ptrdiff_t>(j) * S + r;
-      const double m = mu[o], vx = x[0], vy = x[S];
-      d[o] = j == 0 || j == n_ind - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
-      d[o + 1] = m * (v[o + 1] - vy) * inv_h;
-      v[o] = vx;
-      v[o + 1] = vy;
+      const Pair solved = {x[0], x[S]};
+      Pair cv = mu[o] * (lanes::load(v + o) - solved) * inv_h;
+      if (j == 0 || j == n_ind - 1) cv[0] = 0.0;  // axis nodes' x: no C row
+      lanes::store(d + o, cv);
+      lanes::store(v + o, solved);
     }
   return true;
 }

@@ -34,6 +34,16 @@ typedef double QuadMem __attribute__((vector_size(32), aligned(8), may_alias));
 #endif
 }
 
+// std::sqrt of one double, correctly rounded as it, without its errno branch (a compare and a
+// jump per call): for arguments that are never negative (sums of squares). One sqrtsd.
+[[gnu::always_inline]] inline double sqrt_nonnegative(double x) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtsd(Pair{x, x})[0];
+#else
+  return std::sqrt(x);
+#endif
+}
+
 // m ? a : b per lane (m from a lane comparison: all bits set or none).
 [[gnu::always_inline]] inline Pair select(PairMask m, Pair a, Pair b) {
   return reinterpret_cast<Pair>((reinterpret_cast<PairMask>(a) & m) | (reinterpret_cast<PairMask>(b) & ~m));
