@@ -148,6 +148,7 @@ inline int lane_count(int rings) { return band_lane_count(rings); }
 // ring-by-ring form (as ring_lanes_apply).
 inline int lane_width(bool ring_lanes, bool assembly) {
 #ifdef __FMA__
+  (void)ring_lanes;
   return assembly ? 1 : 2;
 #else
   (void)assembly;
