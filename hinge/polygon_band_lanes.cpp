@@ -1,4 +1,4 @@
-// The half model's damper + membrane band, ring by ring and two rings to a vector
+// The half model's damper + membrane band, ring by ring and two or four rings to a vector
 // (polygon_band_lanes.hpp).
 //
 // ½ EᵀC_full E element by element: a bar or hinge of the first half and its mirror image
@@ -19,13 +19,18 @@
 // each element's scaled gradients are formed once and each node's two band rows summed in
 // registers and written once (no clearing, no read-modify-write).
 //
-// Both forms below are one template over the vector type: the per-ring one on a one-lane
-// "vector" (a double), whose x and y rows share a Pair in the row sums as before; the lane one
-// on Pairs of rings. Every value is formed by the same operations in the same order in both.
+// All forms below are one template over the vector type: the per-ring one on a one-lane
+// "vector" (a double), whose x and y rows share a Pair in the row sums as before; the lane ones
+// on Pairs of rings (SSE2) and on Quads (AVX2: compiled for "avx2" alone, no FMA, behind the
+// CPU check; generic vector operations, a Quad's square root as its halves' sqrtpd). Every
+// value is formed by the same operations in the same order in all.
+#pragma GCC diagnostic ignored "-Wpsabi"  // the AVX copy of the assembly (below)
+
 #include "hinge/polygon_band_lanes.hpp"
 
 #include <algorithm>
 
+#include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_bar_direction.hpp"
 #include "hinge/ring_lanes.hpp"
 
@@ -34,6 +39,7 @@ namespace ringcrush::hinge {
 namespace {
 
 using lanes::Pair;
+using lanes::Quad;
 
 constexpr int kBand = 5;  // lower bandwidth: a hinge couples nodes two apart, 2 dofs each
 
@@ -47,19 +53,37 @@ constexpr int kElementPad = 2;  // empty elements before E_0 (for nodes 0 and 1)
 // Elements E_{−2} … E_{N+3} of one ring.
 inline int element_values(int n_ind) { return kElementSize * (2 * (n_ind - 1) + 2 + 2 * kElementPad); }
 
-// The vector of W rings' values: a double (W = 1) or a Pair (W = 2), value i of lane l at
-// p[i W + l].
+// The vector of W rings' values: a double (W = 1), a Pair (W = 2) or a Quad (W = 4), value i
+// of lane l at p[i W + l]; each bar's direction from polygon_bar_direction.hpp's one formula.
 template <class V>
 struct Lanes;
 template <>
 struct Lanes<double> {
   static constexpr int W = 1;
   static double load(const double* p) { return *p; }
+  static BarDirection direction(double wx, double wy) { return bar_direction(wx, wy); }
 };
 template <>
 struct Lanes<Pair> {
   static constexpr int W = 2;
   [[gnu::always_inline]] static Pair load(const double* p) { return lanes::load(p); }
+  [[gnu::always_inline]] static void store(double* p, Pair v) { lanes::store(p, v); }
+  [[gnu::always_inline]] static auto direction(Pair wx, Pair wy) { return bar_direction_lanes<PairSqrt>(wx, wy); }
+};
+// A Quad's square root as its halves' (sqrtpd, correctly rounded as std::sqrt): the 256-bit
+// builtin is not declared outside code compiled for AVX, and these helpers are inlined into it.
+struct QuadSqrt {
+  [[gnu::always_inline]] static Quad of(Quad x) {
+    const Pair lo = lanes::sqrt(Pair{x[0], x[1]}), hi = lanes::sqrt(Pair{x[2], x[3]});
+    return Quad{lo[0], lo[1], hi[0], hi[1]};
+  }
+};
+template <>
+struct Lanes<Quad> {
+  static constexpr int W = 4;
+  [[gnu::always_inline]] static Quad load(const double* p) { return *reinterpret_cast<const lanes::QuadMem*>(p); }
+  [[gnu::always_inline]] static void store(double* p, Quad v) { *reinterpret_cast<lanes::QuadMem*>(p) = v; }
+  [[gnu::always_inline]] static auto direction(Quad wx, Quad wy) { return bar_direction_lanes<QuadSqrt>(wx, wy); }
 };
 
 // Writes the Live lanes of v (all but a spare one) to p.
@@ -68,10 +92,17 @@ template <int Live = 0, class V>
   if constexpr (Lanes<V>::W == 1) {
     *p = v;
   } else if constexpr (Live == 0 || Live == Lanes<V>::W) {
-    lanes::store(p, v);
+    Lanes<V>::store(p, v);
   } else {
     for (int l = 0; l < Live; ++l) p[l] = v[l];
   }
+}
+
+// Value i of W rings' values at p (a function, not a lambda: a lambda does not take the
+// caller's "avx2" target, and one returning a Quad by value out of line would be the non-AVX ABI).
+template <class V>
+[[gnu::always_inline]] inline V lane(const double* p, int i) {
+  return Lanes<V>::load(p + i * Lanes<V>::W);
 }
 
 template <class V, int Count>
@@ -95,13 +126,11 @@ template <class V>
   constexpr int W = O::W;
   const int last = n_ind - 1;
   auto E = [&](int k) { return elements + kElementSize * (k + kElementPad) * W; };
-  auto X = [&](int j) { return O::load(px + j * W); };
-  auto Y = [&](int j) { return O::load(py + j * W); };
   V ax{}, ay{};  // n/ℓ of the previous bar
   // Hinge 0 (weight ½): bars N−1 (from the mirror of node 1 to node 0) and 0.
   if (c_hinge > 0) {
-    const V ux = X(0) + X(1), uy = Y(0) - Y(1);  // p0 − (−x1, y1)
-    const V wx = X(1) - X(0), wy = Y(1) - Y(0);
+    const V ux = lane<V>(px, 0) + lane<V>(px, 1), uy = lane<V>(py, 0) - lane<V>(py, 1);  // p0 − (−x1, y1)
+    const V wx = lane<V>(px, 1) - lane<V>(px, 0), wy = lane<V>(py, 1) - lane<V>(py, 0);
     const V lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
     const V a0x = -uy / lu, a0y = ux / lu, bx = -wy / lw, by = wx / lw;
     const V g[2][2] = {{a0x + bx, a0y + by}, {a0x - bx, -a0y - by}};
@@ -109,7 +138,7 @@ template <class V>
   }
   // Each bar's e and n/ℓ first, then the elements from them.
   for (int k = 0; k < last; ++k) {
-    const auto g = bar_direction(X(k + 1) - X(k), Y(k + 1) - Y(k));
+    const auto g = O::direction(lane<V>(px, k + 1) - lane<V>(px, k), lane<V>(py, k + 1) - lane<V>(py, k));
     put(bars + (4 * k) * W, g.nx);
     put(bars + (4 * k + 1) * W, g.ny);
     put(bars + (4 * k + 2) * W, g.ex);
@@ -134,7 +163,7 @@ template <class V>
   }
   // Hinge N/2 (weight ½): bar N/2 − 1 and bar N/2 to the mirror of node N/2 − 1.
   if (c_hinge > 0) {
-    const V wx = -X(last - 1) - X(last), wy = Y(last - 1) - Y(last);
+    const V wx = -lane<V>(px, last - 1) - lane<V>(px, last), wy = lane<V>(py, last - 1) - lane<V>(py, last);
     const V l = wx * wx + wy * wy;
     const V bx = -wy / l, by = wx / l;
     const V g[2][2] = {{-ax + bx, -ay - by}, {ax + bx, ay + by}};
@@ -148,7 +177,6 @@ template <class V, int Live>
 [[gnu::always_inline]] inline void band_rows(const double* E, int last, double* band, std::ptrdiff_t S) {
   using O = Lanes<V>;
   constexpr int W = O::W;
-  auto at = [](const double* e, int i) { return O::load(e + i * W); };
   for (int j = 0; j <= last; ++j) {
     // Node j's elements in the summation order and its local node in each, with those of
     // nodes j − 1 and j − 2 where the element holds them.
@@ -163,30 +191,30 @@ template <class V, int Live>
     // distances 1 … 4 (x row) and 2 … 5 (y), then (y, x): each a sum from 0 in element order.
     for (int dim = 0; dim < 2; ++dim) {
       V s = V{} + 0.0;
-      s += at(a, kWg + 2 + dim) * at(a, kG + 2 + dim);
-      s += at(b, kWg + 4 + dim) * at(b, kG + 4 + dim);
-      s += at(c, kWg + dim) * at(c, kG + dim);
-      s += at(d, kWg + 2 + dim) * at(d, kG + 2 + dim);
-      s += at(e, kWg + dim) * at(e, kG + dim);
+      s += lane<V>(a, kWg + 2 + dim) * lane<V>(a, kG + 2 + dim);
+      s += lane<V>(b, kWg + 4 + dim) * lane<V>(b, kG + 4 + dim);
+      s += lane<V>(c, kWg + dim) * lane<V>(c, kG + dim);
+      s += lane<V>(d, kWg + 2 + dim) * lane<V>(d, kG + 2 + dim);
+      s += lane<V>(e, kWg + dim) * lane<V>(e, kG + dim);
       put<Live>(dim == 0 ? rx : ry, s);
     }
     for (int cc = 1; cc >= 0; --cc)
       for (int dim = 0; dim < 2; ++dim) {
         V t = V{} + 0.0;
-        t += at(a, kWg + 2 + dim) * at(a, kG + cc);
-        t += at(b, kWg + 4 + dim) * at(b, kG + 2 + cc);
-        t += at(d, kWg + 2 + dim) * at(d, kG + cc);
+        t += lane<V>(a, kWg + 2 + dim) * lane<V>(a, kG + cc);
+        t += lane<V>(b, kWg + 4 + dim) * lane<V>(b, kG + 2 + cc);
+        t += lane<V>(d, kWg + 2 + dim) * lane<V>(d, kG + cc);
         put<Live>(dim == 0 ? rx + (2 - cc) * S : ry + (3 - cc) * S, t);
-        const V u = 0.0 + at(b, kWg + 4 + dim) * at(b, kG + cc);  // from 0 as the sums: −0 → +0
+        const V u = 0.0 + lane<V>(b, kWg + 4 + dim) * lane<V>(b, kG + cc);  // from 0 as the sums: −0 → +0
         put<Live>(dim == 0 ? rx + (4 - cc) * S : ry + (5 - cc) * S, u);
       }
     {  // (y, x) of node j
       V yx = V{} + 0.0;
-      yx += at(a, kWg + 3) * at(a, kG + 2);
-      yx += at(b, kWg + 5) * at(b, kG + 4);
-      yx += at(c, kWg + 1) * at(c, kG + 0);
-      yx += at(d, kWg + 3) * at(d, kG + 2);
-      yx += at(e, kWg + 1) * at(e, kG + 0);
+      yx += lane<V>(a, kWg + 3) * lane<V>(a, kG + 2);
+      yx += lane<V>(b, kWg + 5) * lane<V>(b, kG + 4);
+      yx += lane<V>(c, kWg + 1) * lane<V>(c, kG + 0);
+      yx += lane<V>(d, kWg + 3) * lane<V>(d, kG + 2);
+      yx += lane<V>(e, kWg + 1) * lane<V>(e, kG + 0);
       put<Live>(ry + S, yx);
     }
   }
@@ -212,13 +240,23 @@ struct LaneScratch {
   }
 };
 
+// Each vector width its own part of the scratch (the slots no element writes stay 0 in each:
+// a Pair's layout would read a Quad's values there).
+template <int W>
+double* scratch_of(double* scratch, int n_ind) {
+  if constexpr (W == 1) return scratch;
+  else return scratch_of<W / 2>(scratch, n_ind) + LaneScratch<W / 2>::size(n_ind);
+}
+
 }  // namespace
 
-std::size_t ring_band_scratch_size(int n_ind) { return LaneScratch<2>::size(n_ind); }
+std::size_t ring_band_scratch_size(int n_ind) {
+  return LaneScratch<1>::size(n_ind) + LaneScratch<2>::size(n_ind) + LaneScratch<4>::size(n_ind);
+}
 
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
                         double* scratch, double* bar_e) {
-  const LaneScratch<1> s(scratch, n_ind);
+  const LaneScratch<1> s(scratch_of<1>(scratch, n_ind), n_ind);
   for (int j = 0; j < n_ind; ++j) {
     s.px[j] = y[6 * j];
     s.py[j] = y[6 * j + 1];
@@ -234,53 +272,108 @@ void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge
 
 namespace {
 
-// Rings p, p + 1 (p + 1 a copy of p where it is the spare lane) on the lanes of a Pair.
-template <std::ptrdiff_t kS>
-void ring_pairs(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
-                double* band, std::ptrdiff_t lanes, double* scratch, double* bar_e) {
-  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
-  const LaneScratch<2> s(scratch, n_ind);
-  const int last = n_ind - 1;
-  for (int p = 0; p < rings; p += 2) {
-    const int live = p + 1 < rings ? 2 : 1;
-    const double* y0 = y + static_cast<std::size_t>(p) * ring_stride;
-    const double* y1 = live == 2 ? y0 + ring_stride : y0;
-    for (int j = 0; j < n_ind; ++j) {  // (x, y) of both rings into their lanes
-      const Pair a = lanes::load(y0 + 6 * j), b = lanes::load(y1 + 6 * j);
-      lanes::store(s.px + 2 * j, __builtin_shuffle(a, b, lanes::PairMask{0, 2}));
-      lanes::store(s.py + 2 * j, __builtin_shuffle(a, b, lanes::PairMask{1, 3}));
-    }
-    band_elements<Pair>(s.px, s.py, n_ind, c_bar, c_hinge, s.elements, s.bars);
-    if (bar_e)
-      for (int l = 0; l < live; ++l) {
-        double* e = bar_e + 2 * static_cast<std::ptrdiff_t>((p + l) * last);
-        for (int k = 0; k < last; ++k) {
-          e[2 * k] = s.bars[(4 * k + 2) * 2 + l];
-          e[2 * k + 1] = s.bars[(4 * k + 3) * 2 + l];
-        }
-      }
-    const double* E = s.elements + kElementSize * kElementPad * 2;
+// Every node's two band rows of the lane group from its elements, the first `live` lanes
+// written.
+template <class V>
+[[gnu::always_inline]] inline void band_rows_live(const double* E, int last, double* band, std::ptrdiff_t S, int live) {
+  constexpr int W = Lanes<V>::W;
+  if (live == W) {
+    band_rows<V, W>(E, last, band, S);
+  } else if (live == 1) {
+    band_rows<V, 1>(E, last, band, S);
+  } else if constexpr (W == 4) {
     if (live == 2)
-      band_rows<Pair, 2>(E, last, band + p, S);
+      band_rows<V, 2>(E, last, band, S);
     else
-      band_rows<Pair, 1>(E, last, band + p, S);
+      band_rows<V, 3>(E, last, band, S);
   }
 }
+
+// Rings p … p + W − 1 on the lanes of a V (a spare lane a copy of ring p, not written).
+template <class V>
+[[gnu::always_inline]] inline void ring_group(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                              double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
+                                              double* scratch, double* bar_e, int p) {
+  constexpr int W = Lanes<V>::W;
+  const LaneScratch<W> s(scratch_of<W>(scratch, n_ind), n_ind);
+  const int last = n_ind - 1;
+  const int live = std::min(W, rings - p);
+  const double* yl[W];
+  for (int l = 0; l < W; ++l) yl[l] = y + static_cast<std::size_t>(l < live ? p + l : p) * ring_stride;
+  for (int j = 0; j < n_ind; ++j)  // (x, y) of the rings into their lanes, two rings at a time
+    for (int l = 0; l < W; l += 2) {
+      const Pair a = lanes::load(yl[l] + 6 * j), b = lanes::load(yl[l + 1] + 6 * j);
+      lanes::store(s.px + W * j + l, __builtin_shuffle(a, b, lanes::PairMask{0, 2}));
+      lanes::store(s.py + W * j + l, __builtin_shuffle(a, b, lanes::PairMask{1, 3}));
+    }
+  band_elements<V>(s.px, s.py, n_ind, c_bar, c_hinge, s.elements, s.bars);
+  if (bar_e)
+    for (int l = 0; l < live; ++l) {
+      double* e = bar_e + 2 * static_cast<std::ptrdiff_t>((p + l) * last);
+      for (int k = 0; k < last; ++k) {
+        e[2 * k] = s.bars[(4 * k + 2) * W + l];
+        e[2 * k + 1] = s.bars[(4 * k + 3) * W + l];
+      }
+    }
+  band_rows_live<V>(s.elements + kElementSize * kElementPad * W, last, band + p, S, live);
+}
+
+// All rings, Width to a vector: Pairs (2), or Quads and a Pair for the rest (4; S is even).
+template <std::ptrdiff_t kS, int Width>
+[[gnu::always_inline]] inline void rings_in_lanes(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                                  double c_bar, double c_hinge, double* band, std::ptrdiff_t lanes,
+                                                  double* scratch, double* bar_e) {
+  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
+  int p = 0;
+  if constexpr (Width == 4)
+    for (; p + 4 <= S; p += 4)
+      ring_group<Quad>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
+  for (; p < rings; p += 2)
+    ring_group<Pair>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
+}
+
+// The lane stride a compile-time constant for the usual ring counts: the strided stores
+// then take immediate offsets.
+template <int Width>
+[[gnu::always_inline]] inline void assemble_in_lanes(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                                     double c_bar, double c_hinge, double* band, double* scratch,
+                                                     double* bar_e) {
+  const int S = band_lane_count(rings);
+  switch (S) {
+    case 2: rings_in_lanes<2, Width>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 2, scratch, bar_e); break;
+    case 4: rings_in_lanes<4, Width>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 4, scratch, bar_e); break;
+    case 6: rings_in_lanes<6, Width>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 6, scratch, bar_e); break;
+    case 8: rings_in_lanes<8, Width>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 8, scratch, bar_e); break;
+    default: rings_in_lanes<0, Width>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e);
+  }
+}
+
+void assemble_sse2(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
+                   double* band, double* scratch, double* bar_e) {
+  assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+
+#if defined(__x86_64__) && !defined(__FMA__)
+[[gnu::target("avx2")]] void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                           double c_bar, double c_hinge, double* band, double* scratch,
+                                           double* bar_e) {
+  assemble_in_lanes<4>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+#else
+void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
+                   double* band, double* scratch, double* bar_e) {
+  assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+#endif
 
 }  // namespace
 
 void assemble_ring_bands(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar,
-                         double c_hinge, double* band, double* scratch, double* bar_e) {
-  // The lane stride a compile-time constant for the usual ring counts: the strided stores
-  // then take immediate offsets.
-  const int S = band_lane_count(rings);
-  switch (S) {
-    case 2: ring_pairs<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 2, scratch, bar_e); break;
-    case 4: ring_pairs<4>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 4, scratch, bar_e); break;
-    case 6: ring_pairs<6>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 6, scratch, bar_e); break;
-    case 8: ring_pairs<8>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, 8, scratch, bar_e); break;
-    default: ring_pairs<0>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e);
-  }
+                         double c_hinge, double* band, double* scratch, double* bar_e, int width) {
+  if (width == 4 && band_lanes_avx2())
+    assemble_avx2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+  else
+    assemble_sse2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
 }
 
 }  // namespace ringcrush::hinge

@@ -1,12 +1,12 @@
 // The half model's damper + membrane band (PolygonChain::half_band_step and
 // ring_damper_membrane_kick, polygon_implicit_dampers.cpp) assembled from y: ring by ring
-// (assemble_ring_band, the reference) or with the rings side by side, two to an SSE2 vector
-// (assemble_ring_bands). The rings have the same N and the same element order, so every lane
-// does the per-ring assembly's operations on its ring in the same order (IEEE add, multiply,
-// divide and square root, no contraction on the default x86-64 target): the same bits. What
-// changes is the count of instructions: each element's gradients, divisions and square roots
-// are issued for two rings at once, and the band rows, whose ring index is innermost in the
-// interleaved band, go out as one store for both.
+// (assemble_ring_band, the reference) or with the rings side by side, two to an SSE2 vector or
+// four to an AVX one (assemble_ring_bands). The rings have the same N and the same element
+// order, so every lane does the per-ring assembly's operations on its ring in the same order
+// (IEEE add, multiply, divide and square root, no contraction on the default x86-64 target nor
+// on "avx2"): the same bits. What changes is the count of instructions: each element's
+// gradients, divisions and square roots are issued for two or four rings at once, and the band
+// rows, whose ring index is innermost in the interleaved band, go out as one store for them.
 //
 // The band: C(i, i − q) of ring r at band[(6 i + q) S + r], S the ring count rounded up to even
 // (a spare lane, left 0 here, when it is odd), i over the ring's 2 n_ind velocity rows; the
@@ -32,8 +32,10 @@ std::size_t ring_band_scratch_size(int n_ind);
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
                         double* scratch, double* bar_e);
 
-// All rings, two to a vector: bitwise the rings' assemble_ring_band (the spare lane untouched).
+// All rings, `width` to a vector: two (SSE2), or four (AVX2, then a pair for the rest) where
+// band_lanes_avx2 (polygon_band_solve.hpp) says the CPU has it, two otherwise. Bitwise the rings'
+// assemble_ring_band (a spare lane untouched).
 void assemble_ring_bands(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar,
-                         double c_hinge, double* band, double* scratch, double* bar_e);
+                         double c_hinge, double* band, double* scratch, double* bar_e, int width);
 
 }  // namespace ringcrush::hinge

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "hinge/polygon_band_lanes.hpp"
+#include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_chain.hpp"
 
 namespace ringcrush::hinge {
@@ -131,24 +132,29 @@ void PolygonChain::assemble_ring_dampers(int ring, const double* y) {
 
 // --- The half model: an open band, assembled from y without the mirror expansion ---------
 //
-// polygon_band_lanes.cpp assembles it (the element order and the sums there), all rings two to
-// a vector where the ring lanes are on (set_ring_lanes), ring by ring otherwise.
+// polygon_band_lanes.cpp assembles it (the element order and the sums there) and
+// polygon_band_solve.cpp solves it, all rings two or four to a vector where the ring lanes are
+// on (set_ring_lanes), ring by ring otherwise (the reference).
 namespace {
-
-constexpr int kBand = 5;  // lower bandwidth: a hinge couples nodes two apart, 2 dofs each
-
-// Two doubles on the lanes of one SSE2 vector (GCC's vector extension, as fe/element/
-// element_lanes.hpp): two rings' band rows in half_band_step. Each lane computes as the scalar
-// code does (IEEE, no contraction on the default x86-64 target), so the bits are the same.
-typedef double Pair __attribute__((vector_size(16)));
-// Two doubles anywhere in memory, read or written as one vector.
-typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
-inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
-inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 
 // The rings' lanes in the interleaved band arrays (half_band_step): an even count, two rings
 // to a Pair, with a spare lane (identity, b = 0) when the ring count is odd.
 inline int lane_count(int rings) { return band_lane_count(rings); }
+
+// How many rings to a vector in the band's assembly and solve: 1 with the ring lanes off (the
+// reference), else 4 (AVX2 where the CPU has it, 2 otherwise). In a build with FMA
+// (RINGCRUSH_NATIVE) the assembly stays ring by ring and the solve two to a vector, as before
+// the lanes: GCC may fuse a product into a sum there, on the lanes differently from the
+// ring-by-ring form (as ring_lanes_apply).
+inline int lane_width(bool ring_lanes, bool assembly) {
+#ifdef __FMA__
+  (void)ring_lanes;
+  return assembly ? 1 : 2;
+#else
+  (void)assembly;
+  return ring_lanes ? 4 : 1;
+#endif
+}
 
 }  // namespace
 
@@ -161,69 +167,12 @@ void PolygonChain::assemble_half_band(int ring, const double* y, double* band) {
                      scratch, bar_e);
 }
 
-// One row i of the band LDLᵀ of μ + h C (L unit lower triangular, D diagonal), for two rings
-// on the lanes of a Pair, in two parts: row_residual forms W(i, i − q) = (L D)(i, i − q) and
-// L(i, i − q) = W(i, i − q)/D(i − q) for q = B…1, the pivot D(i) = A(i, i) − Σ W L in the
-// diagonal slot and the forward substitution z_i = b_i − Σ L z in b; row_pivot takes 1/D(i).
-// No square root (the Cholesky factor L D^½ this replaces took one per row): the chain from
-// one row's pivot to the next is a multiplication, a product, a subtraction and the division,
-// so every sum adds the term that waits for the previous row last (q + 1 in W, 1 in D and z)
-// and the others while that row's division runs. The rows' entries are at row[q S]
-// (ring-interleaved on S lanes; row i − q at row − 6 q S, its 1/D(i − q) at inv − q S). B is
-// the row's bandwidth: 5 for a node's y row, 4 for its x row — its column i − 5 is the y of
-// the node three back, which no bar or hinge couples to it, and the factor keeps that zero.
-// The split lets the rings' divisions, the long latency of the chain, run side by side
-// (half_band_solve).
-namespace {
-
-
-template <int B>
-inline void row_residual(const double* c, double h, Pair mass, double* row, const double* inv, double* b,
-                         std::ptrdiff_t S) {
-  Pair w[B + 1], l[B + 1];
-  for (int q = 0; q <= B; ++q) w[q] = h * load(c + q * S);
-  w[0] += mass;
-  for (int q = B; q >= 1; --q) {
-    const double* lj = row - 6 * q * S;
-    Pair s = w[q];
-    for (int m = B; m > q; --m) s -= w[m] * load(lj + (m - q) * S);
-    w[q] = s;
-    l[q] = s * load(inv - q * S);
-  }
-  Pair s = w[0];
-  for (int m = B; m >= 1; --m) s -= w[m] * l[m];
-  store(row, s);
-  for (int q = 1; q <= B; ++q) store(row + q * S, l[q]);
-  Pair z = load(b);
-  for (int m = B; m >= 1; --m) z -= l[m] * load(b - m * S);
-  store(b, z);
-}
-
-inline bool row_pivot(const double* row, double* inv) {
-  const Pair s = load(row);
-  store(inv, 1.0 / s);
-  return s[0] > 0.0 && s[1] > 0.0;
-}
-
-// Row i of the backward substitution Lᵀ x = D⁻¹ z: the column of L below the diagonal,
-// L(i + m, i) at row[(6 m + m) S]. B as above, of the rows below: a y row's column reaches the
-// x row five down only through that row's structural zero.
-template <int B>
-inline void back_row(const double* row, const double* inv, double* b, std::ptrdiff_t S) {
-  Pair s = load(b) * load(inv);
-  for (int m = B; m >= 1; --m) s -= load(row + 7 * m * S) * load(b + m * S);
-  store(b, s);
-}
-
-}  // namespace
-
 // All rings at once: the factorisation and the two substitutions are chains of dependent
 // operations (each row waits for the previous ones), so the rings' bands are interleaved
-// (ring index innermost) and the rings advance in lockstep, two to a vector — independent
-// work for the processor's pipelines and SIMD lanes. A node's two rows are unrolled bodies
-// with their fixed bandwidths (row_residual), the forward substitution fused into the
-// factorisation; the pad rows (identity before the band, zero after it) stay from the first
-// call, so each call writes only the band.
+// (ring index innermost) and the rings advance in lockstep, two or four to a vector —
+// independent work for the processor's pipelines and SIMD lanes (polygon_band_solve.cpp). The
+// pad rows (identity before the band, zero after it) stay from the first call, so each call
+// writes only the band.
 void PolygonChain::half_band_step(const double* y, double h, double* v, double* d) {
   prepare_half_band();
   assemble_half_bands(y);
@@ -232,141 +181,43 @@ void PolygonChain::half_band_step(const double* y, double h, double* v, double* 
 
 void PolygonChain::prepare_half_band() {
   const int n = 2 * n_ind_, R = n_rings_, S = lane_count(R);
-  const auto rows = static_cast<std::size_t>(n + 2 * kBand), lanes = static_cast<std::size_t>(S);
-  const std::size_t band_size = 6 * static_cast<std::size_t>(n) * lanes;
+  const std::size_t band_size = 6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(S);
   if (implicit_membrane_) membrane_e_.resize(2 * static_cast<std::size_t>((n_ind_ - 1) * R));
   if (kv_band_c_.size() != band_size + ring_band_scratch_size(n_ind_)) {
     // C(i, i − q) of ring r at (6 i + q) S + r (a spare lane 0), then the element scratch of
     // assemble_half_band.
     kv_band_c_.assign(band_size + ring_band_scratch_size(n_ind_), 0.0);
-    // The factors, L(i, i − q) of ring r at (6 i + q) S + r: leading pad rows I, trailing
-    // ones 0, so that the fixed-width rows need no bounds; a spare lane is I throughout.
-    kv_band_l_.assign(6 * rows * lanes, 0.0);
-    for (std::size_t i = 0; i < rows; ++i)
-      for (std::size_t r = 0; r < lanes; ++r)
-        if (i < static_cast<std::size_t>(kBand) || r >= static_cast<std::size_t>(R)) kv_band_l_[6 * i * lanes + r] = 1.0;
-    kv_inv_diag_.assign(rows * lanes, 1.0);
-    kv_b_.assign(rows * lanes, 0.0);
+    // The factors, L(i, i − q) of ring r at (6 i + q) S + r, with their pad rows.
+    band_factor_rows(n_ind_, R, kv_band_l_, kv_inv_diag_, kv_b_);
     kv_inverse_mu_.resize(mu_.size());
     for (std::size_t i = 0; i < mu_.size(); ++i) kv_inverse_mu_[i] = 1.0 / mu_[i];
   }
 }
 
-// Not in a build with FMA (RINGCRUSH_NATIVE): GCC may fuse a product into a sum there, on the
-// lanes differently from the ring-by-ring form (as ring_lanes_apply).
 void PolygonChain::assemble_half_bands(const double* y) {
-#ifdef __FMA__
-  const bool lanes = false;
-#else
-  const bool lanes = ring_lanes_;
-#endif
-  if (!lanes) {  // the reference: ring by ring
+  const int width = lane_width(ring_lanes_, true);
+  if (width == 1) {  // the reference: ring by ring
     for (int r = 0; r < n_rings_; ++r) assemble_half_band(r, y, kv_band_c_.data() + r);
     return;
   }
   double* scratch = kv_band_c_.data() + kv_band_c_.size() - ring_band_scratch_size(n_ind_);
   assemble_ring_bands(y, 6 * static_cast<std::size_t>(n_ind_), n_rings_, n_ind_, bar_matrix_coefficient(), c_hinge_,
-                      kv_band_c_.data(), scratch, implicit_membrane_ ? membrane_e_.data() : nullptr);
+                      kv_band_c_.data(), scratch, implicit_membrane_ ? membrane_e_.data() : nullptr, width);
 }
-
-namespace {
-
-// The band solve's operands: the interleaved band C, factor L, right-hand side b and 1/D
-// (each at its first band row), the masses μ and the state-length v and d.
-struct BandSolve {
-  const double* C;
-  double *L, *b, *inv;
-  const double* mu;
-  int n_ind, rings;
-  double h;
-  double *v, *d;
-};
-
-// half_band_solve on S lanes; kS the lane stride when known at compile time (0: p's), so that
-// the rows' strided loads take immediate offsets and the pointers stay in registers. Returns
-// whether every pivot was positive.
-template <int kS>
-bool solve_band(const BandSolve& p, std::ptrdiff_t lanes) {
-  const std::ptrdiff_t S = kS > 0 ? kS : lanes;
-  const int R = p.rings, n_ind = p.n_ind;
-  const double h = p.h;  // a local: a store through the arrays could alias p.h for the compiler
-  const double *C = p.C, *mu = p.mu;
-  double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
-  auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
-  bool definite = true;
-  for (int j = 0; j < n_ind; ++j) {
-    const bool axis = j == 0 || j == n_ind - 1;  // axis nodes' x stays 0
-    const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
-    double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    for (int r = 0; r < R; ++r) {
-      const std::size_t o = node(r, j) + 2;
-      bx[r] = axis ? 0.0 : mu[o] * v[o];
-      bx[S + r] = mu[o] * v[o + 1];
-    }
-    for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<4>(C + at + r, h, m, L + at + r, ix + r, bx + r, S);
-    }
-    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + r, ix + r);
-    for (int r = 0; r < S; r += 2) {
-      const Pair m = {mu[node(r, j) + 2], r + 1 < R ? mu[node(r + 1, j) + 2] : 1.0};
-      row_residual<5>(C + at + 6 * S + r, h, m, L + at + 6 * S + r, ix + S + r, bx + S + r, S);
-    }
-    for (int r = 0; r < S; r += 2) definite &= row_pivot(L + at + 6 * S + r, ix + S + r);
-  }
-  if (!definite) return false;
-  for (int j = n_ind - 1; j >= 0; --j) {
-    const double* Lx = L + 12 * static_cast<std::ptrdiff_t>(j) * S;
-    double* bx = b + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    const double* ix = inv + 2 * static_cast<std::ptrdiff_t>(j) * S;
-    for (int r = 0; r < S; r += 2) {
-      back_row<4>(Lx + 6 * S + r, ix + S + r, bx + S + r, S);
-      back_row<5>(Lx + r, ix + r, bx + r, S);
-    }
-  }
-  // v, and d = C v from the system itself: (μ + h C) v = μ v* gives C v = μ (v* − v)/h, three
-  // operations per row instead of the band product (h > 0 here: ring_damper_step). Its
-  // rounding, ≈ ε μ|v|/h, is that of the step's own acceleration (v − v_{n+½})/(½Δt); d enters
-  // only the damper work, so the motion keeps its bits.
-  const double inv_h = 1.0 / h;
-  for (int r = 0; r < R; ++r)
-    for (int j = 0; j < n_ind; ++j) {
-      const std::size_t o = node(r, j) + 2;
-      const double* x = b + 2 * static_cast<std::ptrdiff_t>(j) * S + r;
-      const double m = mu[o], vx = x[0], vy = x[S];
-      d[o] = j == 0 || j == n_ind - 1 ? 0.0 : m * (v[o] - vx) * inv_h;  // axis nodes' x: no C row
-      d[o + 1] = m * (v[o + 1] - vy) * inv_h;
-      v[o] = vx;
-      v[o + 1] = vy;
-    }
-  return true;
-}
-
-}  // namespace
 
 void PolygonChain::half_band_solve(double h, double* v, double* d) {
-  const int S = lane_count(n_rings_);
-  const auto lanes = static_cast<std::size_t>(S);
+  const auto lanes = static_cast<std::size_t>(lane_count(n_rings_));
   const BandSolve p{kv_band_c_.data(),
-                    kv_band_l_.data() + 6 * kBand * lanes,
-                    kv_b_.data() + kBand * lanes,
-                    kv_inv_diag_.data() + kBand * lanes,
+                    kv_band_l_.data() + 6 * kBandPadRows * lanes,
+                    kv_b_.data() + kBandPadRows * lanes,
+                    kv_inv_diag_.data() + kBandPadRows * lanes,
                     mu_.data(),
                     n_ind_,
                     n_rings_,
                     h,
                     v,
                     d};
-  bool definite;
-  switch (S) {
-    case 2: definite = solve_band<2>(p, 2); break;
-    case 4: definite = solve_band<4>(p, 4); break;
-    case 6: definite = solve_band<6>(p, 6); break;
-    case 8: definite = solve_band<8>(p, 8); break;
-    default: definite = solve_band<0>(p, S);
-  }
-  if (!definite)
+  if (!solve_ring_bands(p, lane_width(ring_lanes_, false)))
     throw std::runtime_error("PolygonChain::ring_damper_step: μ + h C is not positive definite");
 }
 

@@ -15,6 +15,7 @@
 
 #include "hinge/polygon_bar_direction.hpp"
 #include "hinge/polygon_chain.hpp"
+#include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
 
@@ -113,11 +114,13 @@ void PolygonChain::ring_damper_membrane_kick(const double* y, double h, const do
     membrane_stiffness_product(y, w, kw);
   }
   // μ v* + h² K_m w as μ (v* + h² K_m w / μ): the right-hand side of the solve, and the v* its
-  // d = μ (v* − v)/h is taken from.
-  for (int r = 0; r < n_rings_; ++r)
-    for (int j = 0; j < n_ind_; ++j)
-      for (std::size_t i = node_offset(r, j) + 2; i < node_offset(r, j) + 4; ++i)
-        v[i] += h * h * kw[i] * kv_inverse_mu_[i];
+  // d = μ (v* − v)/h is taken from. The nodes' rows follow each other from row 0
+  // (node_offset), a node's two velocity rows one Pair.
+  const double h2 = h * h;
+  const double* inverse_mu = kv_inverse_mu_.data();
+  const std::size_t nodes_end = node_offset(n_rings_ - 1, n_ind_ - 1) + 6;
+  for (std::size_t o = 2; o < nodes_end; o += 6)
+    lanes::store(v + o, lanes::load(v + o) + h2 * lanes::load(kw + o) * lanes::load(inverse_mu + o));
   if (half_)
     half_band_solve(h, v, d);
   else

@@ -152,9 +152,9 @@ namespace {
 // Every function taking or returning a Quad is always inlined there, so none is ever called
 // with the non-AVX ABI that -Wpsabi warns about (silenced for this file, above its includes:
 // small_atan's vector copy is diagnosed at its definition).
-typedef double Quad __attribute__((vector_size(32)));
-typedef long long QuadMask __attribute__((vector_size(32)));
-typedef double QuadMem __attribute__((vector_size(32), aligned(8), may_alias));
+using lanes::Quad;
+using lanes::QuadMask;
+using lanes::QuadMem;
 
 template <class V>
 struct Ops;

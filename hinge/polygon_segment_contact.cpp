@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_closest_segment.hpp"
 #include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
@@ -140,39 +141,24 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
   // ring's inner walls met at 0.03 t and 32 m/s after a 2 µs step, 1e-3 of KE0 in one sample
   // at safety 1 (README, h51).
   const double reach = landing_depth_ > 0.0 ? 2.0 * t_ : t_;
-  const lanes::Pair grow = {reach, reach};
-  // The half model's segments end at a + 1 (a ≤ n_ind − 2); the full ring's last one wraps.
-  const int wrap = half_ ? -1 : n_ind_ - 1;
+  // The box shrinks to the closest segment found so far (polygon_closest_segment.hpp): the
+  // same choice to the bit, fewer projections. The half model's segments end at a + 1
+  // (a ≤ n_ind − 2), the full ring's last one wraps: one loop for each.
+  const double shrink_margin = 1e-6 * t_;
+  const int wrap = n_ind_ - 1;
   for (const int* jt = node_first; jt != node_last; ++jt) {
     const int j = *jt;
     const auto os = node_offset(rs, j);
     const lanes::Pair slave = lanes::load(y + os);
     const double sx = slave[0], sy = slave[1];
-    double best = t_ * 2.0;
-    int best_a = -1;
-    double best_s = 0.0;
     const int* first = candidate_segment_.data() + candidate_start_[base + static_cast<std::size_t>(j)];
     const int* last = candidate_segment_.data() + candidate_start_[base + static_cast<std::size_t>(j) + 1];
-    for (const int* it = first; it != last; ++it) {
-      const int a = *it;
-      // The segment's box grown by the reach: the node outside it is too far.
-      const double* pa = master + 6 * static_cast<std::size_t>(a);
-      const double* pb = a == wrap ? master : pa + 6;
-      const lanes::Pair end_a = lanes::load(pa), end_b = lanes::load(pb);
-      if (lanes::any_less(slave, lanes::min(end_a, end_b) - grow, lanes::max(end_a, end_b) + grow, slave)) continue;
-      const double ax = end_a[0], ay = end_a[1], bx = end_b[0], by = end_b[1];
-      const double ex = bx - ax, ey = by - ay;
-      const double ll = ex * ex + ey * ey;
-      double s = ((sx - ax) * ex + (sy - ay) * ey) / ll;
-      s = std::clamp(s, 0.0, 1.0);
-      const double qx = ax + s * ex, qy = ay + s * ey;
-      const double d = std::sqrt((sx - qx) * (sx - qx) + (sy - qy) * (sy - qy));
-      if (d < best) {
-        best = d;
-        best_a = a;
-        best_s = s;
-      }
-    }
+    double best = t_ * 2.0, best_s = 0.0;
+    int best_a = -1;
+    if (half_)
+      closest_segment<false>(slave, master, wrap, first, last, reach, shrink_margin, best, best_a, best_s);
+    else
+      closest_segment<true>(slave, master, wrap, first, last, reach, shrink_margin, best, best_a, best_s);
     if (best_a < 0) continue;
     const int a = best_a, b = a + 1 == n_ind_ ? 0 : a + 1;
     if (record) pairs_.push_back({rs * n_ind_ + j, rm * n_ind_ + a, rm * n_ind_ + b});

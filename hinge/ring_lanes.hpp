@@ -14,6 +14,14 @@ typedef long long PairMask __attribute__((vector_size(16)));
 // Two doubles anywhere in memory, read or written as one vector.
 typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
 
+// Four rings on the lanes of one AVX vector (the hinge pass of polygon_ring_lanes.cpp, the band
+// of polygon_band_lanes.cpp and polygon_band_solve.cpp): only in code compiled for "avx2" (the
+// runtime check there), with generic vector operations, in files that silence -Wpsabi (a
+// function taking a Quad by value changes the ABI without AVX; every such one is inlined).
+typedef double Quad __attribute__((vector_size(32)));
+typedef long long QuadMask __attribute__((vector_size(32)));
+typedef double QuadMem __attribute__((vector_size(32), aligned(8), may_alias));
+
 [[gnu::always_inline]] inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
 [[gnu::always_inline]] inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 
@@ -23,6 +31,16 @@ typedef double PairMem __attribute__((vector_size(16), aligned(8), may_alias));
   return __builtin_ia32_sqrtpd(x);
 #else
   return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
+
+// std::sqrt of one double, correctly rounded as it, without its errno branch (a compare and a
+// jump per call): for arguments that are never negative (sums of squares). One sqrtsd.
+[[gnu::always_inline]] inline double sqrt_nonnegative(double x) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtsd(Pair{x, x})[0];
+#else
+  return std::sqrt(x);
 #endif
 }
 
