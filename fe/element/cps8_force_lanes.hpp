@@ -28,6 +28,7 @@
 namespace ringcrush::fe {
 
 constexpr int kCps8Lanes = 4;
+constexpr int kCps8WideLanes = 8;  // AVX-512
 
 // One element of a lane group: the arguments of cps8_force().
 struct Cps8Lane {
@@ -38,7 +39,10 @@ struct Cps8Lane {
   Cps8Output* out = nullptr;
   const BulkViscousLoad* viscous = nullptr;  // all four set or all four null
 };
-using Cps8LaneGroup = std::array<Cps8Lane, kCps8Lanes>;
+template <int W>
+using Cps8LaneGroupOf = std::array<Cps8Lane, W>;
+using Cps8LaneGroup = Cps8LaneGroupOf<kCps8Lanes>;
+using Cps8WideLaneGroup = Cps8LaneGroupOf<kCps8WideLanes>;
 
 // cps8_force() on four elements of one integration rule. Throws std::invalid_argument if the
 // lanes mix rules or mix bulk viscosity on and off.
@@ -71,5 +75,21 @@ bool cps8_lanes_avx2_available();
 // the scalar kernel's 2×2 products into their sums and the lanes (which never fuse) would round
 // differently, so cps8_force_lanes() goes element by element there.
 bool cps8_lanes_bitwise_build();
+
+// Eight elements a group (AVX-512: 8 doubles a vector): the same kernel, lane l of the 8-wide
+// vector doing on element l exactly what lane l of the 4-wide one does, so every result is
+// bitwise that of the 4-lane kernel and of cps8_force(). AVX-512 without FMA contraction
+// (avx512f would let GCC fuse a product into its sum; the copy is compiled with contraction
+// off). cps8_force_wide_lanes_available(): AVX-512F on this CPU, a bitwise build and the Eigen
+// dot-product tree the lanes reproduce; elsewhere the callers use groups of four, and these
+// functions fall back: cps8_force_lanes() on two groups of four, ..._on_coords() returns false.
+bool cps8_force_wide_lanes_available();
+void cps8_force_lanes(const Cps8WideLaneGroup& group, const J2PlaneStress& material);
+bool cps8_force_lanes_on_coords(const Cps8WideLaneGroup& group, const Cps8RuleTables& tables,
+                                const std::array<const ElementCoords*, kCps8WideLanes>& x_n, double thickness,
+                                const J2PlaneStress& material);
+// The compiled AVX-512 copy (tests), only where cps8_lanes_avx512_available().
+void cps8_force_lanes_avx512(const Cps8WideLaneGroup& group, const J2PlaneStress& material);
+bool cps8_lanes_avx512_available();
 
 }  // namespace ringcrush::fe

@@ -1,17 +1,47 @@
-// Four elements on the lanes of one vector (cps8_force_lanes.hpp, geometry_update.hpp): the
-// vector type and its gathers from / scatters to the elements' own arrays. Internal to the
-// lane kernels; every function is always inlined so that it is compiled for the instruction
-// set of the kernel that uses it (portable or AVX2).
+// Elements on the lanes of one vector (cps8_force_lanes.hpp, geometry_update.hpp): four (an
+// AVX2 or SSE2 vector) or eight (AVX-512), the vector types and their gathers from / scatters
+// to the elements' own arrays. Internal to the lane kernels; every function is always inlined
+// so that it is compiled for the instruction set of the kernel that uses it (portable, AVX2 or
+// AVX-512), and every one is written for either width so that the kernels' arithmetic has one
+// source: lane l of a width-8 vector does exactly what lane l of a width-4 vector does.
 #pragma once
 
 namespace ringcrush::fe::lanes {
 
 typedef double Lanes __attribute__((vector_size(32)));  // one double per element of the group
 typedef long long LaneMask __attribute__((vector_size(32)));
+typedef double Lanes8 __attribute__((vector_size(64)));  // the same, eight elements (AVX-512)
+typedef long long LaneMask8 __attribute__((vector_size(64)));
 // Four consecutive doubles anywhere in memory, read or written as one vector (an unaligned
 // vector load/store; memcpy went through the stack in two halves, and the full-width reload
 // of the halves stalled on store forwarding — perf).
 typedef double UnalignedLanes __attribute__((vector_size(32), aligned(8), may_alias));
+
+// Elements per vector of type V.
+template <class V>
+constexpr int kWidthOf = static_cast<int>(sizeof(V) / sizeof(double));
+
+// The vector of W lanes and its comparison mask.
+template <int W>
+struct LaneTypes;
+template <>
+struct LaneTypes<4> {
+  using V = Lanes;
+  using Mask = LaneMask;
+};
+template <>
+struct LaneTypes<8> {
+  using V = Lanes8;
+  using Mask = LaneMask8;
+};
+
+// Whether every lane of a comparison mask is set.
+template <class M>
+[[gnu::always_inline]] inline bool all_lanes(const M& m) {
+  bool all = true;
+  for (int l = 0; l < kWidthOf<M>; ++l) all = all && m[l] != 0;
+  return all;
+}
 
 // r[l] = {c[0][l], c[1][l], c[2][l], c[3][l]}: the 4 × 4 transpose of lanes in registers.
 [[gnu::always_inline]] inline void transpose4(const Lanes* c, Lanes* r) {
@@ -40,6 +70,17 @@ template <bool kShuffle>
     for (int m = 0; m < 4; ++m) c[m] = Lanes{p[0][at + m], p[1][at + m], p[2][at + m], p[3][at + m]};
   }
 }
+// Eight elements (AVX-512 only, hence always by shuffles): the two groups of four transposed
+// as above, each c[m] then the two halves joined (one 256-bit insert).
+template <bool kShuffle>
+[[gnu::always_inline]] inline void gather_transposed(const double* const* p, int at, Lanes8* c) {
+  static_assert(kShuffle, "eight lanes are AVX-512 only");
+  Lanes lo[4], hi[4];
+  gather_transposed<true>(p, at, lo);
+  gather_transposed<true>(p + 4, at, hi);
+  for (int m = 0; m < 4; ++m) c[m] = __builtin_shufflevector(lo[m], hi[m], 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
 // The inverse: p[l][at + m] = c[m][l].
 template <bool kShuffle>
 [[gnu::always_inline]] inline void scatter_transposed(const Lanes* c, int at, double* const* p) {
@@ -51,6 +92,27 @@ template <bool kShuffle>
     for (int l = 0; l < 4; ++l)
       for (int m = 0; m < 4; ++m) p[l][at + m] = c[m][l];
   }
+}
+template <bool kShuffle>
+[[gnu::always_inline]] inline void scatter_transposed(const Lanes8* c, int at, double* const* p) {
+  static_assert(kShuffle, "eight lanes are AVX-512 only");
+  Lanes lo[4], hi[4];
+  for (int m = 0; m < 4; ++m) {
+    lo[m] = __builtin_shufflevector(c[m], c[m], 0, 1, 2, 3);
+    hi[m] = __builtin_shufflevector(c[m], c[m], 4, 5, 6, 7);
+  }
+  scatter_transposed<true>(lo, at, p);
+  scatter_transposed<true>(hi, at, p + 4);
+}
+
+// v[l] = value(l) on every lane: values that are not 4 consecutive doubles of each element
+// (one vector built from W values, as a braced vector literal).
+template <class V, class F>
+[[gnu::always_inline]] inline void lanes_from(F value, V& v) {
+  if constexpr (kWidthOf<V> == 4)
+    v = V{value(0), value(1), value(2), value(3)};
+  else
+    v = V{value(0), value(1), value(2), value(3), value(4), value(5), value(6), value(7)};
 }
 
 }  // namespace ringcrush::fe::lanes
