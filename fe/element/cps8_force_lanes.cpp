@@ -240,20 +240,28 @@ template <int W, bool kShuffle, bool kFormGeometry>
     // update_stress() on the same ΔE.
     Lanes ep0 = sn[3] + 0.0, ep1 = strain[0] + 0.0, ep2 = strain[1] + 0.0, peeq = strain[2],
           work = strain[3] + w * 0.0;
-    for (int l = 0; l < W; ++l) {
-      if (elastic[l]) continue;
-      const PointState& cs = lane[l].committed[i];
-      const J2Update up = material.update_stress(Vec3(de0[l], de1[l], de2[l]), cs);
-      t0[l] = up.stress(0);
-      t1[l] = up.stress(1);
-      t2[l] = up.stress(2);
-      energy[l] = up.elastic_energy;
-      strain33[l] = up.strain33_increment;
-      ep0[l] = cs.plastic_strain(0) + up.plastic_increment(0);
-      ep1[l] = cs.plastic_strain(1) + up.plastic_increment(1);
-      ep2[l] = cs.plastic_strain(2) + up.plastic_increment(2);
-      peeq[l] = up.peeq;
-      work[l] = cs.plastic_work + w[l] * up.dissipation;
+    // The lanes are written one by one only inside this block, on copies: a vector indexed by a
+    // run-time lane lives in memory, and the elastic path (most points) would store and reload
+    // every one of these vectors at every point (the kernel's spills, disassembly).
+    if (const unsigned yielding = clear_lanes(elastic); yielding != 0) {
+      Lanes v[14] = {t0, t1, t2, energy, strain33, ep0, ep1, ep2, peeq, work, de0, de1, de2, w};
+      for (int l = 0; l < W; ++l) {
+        if (!(yielding >> l & 1u)) continue;
+        const PointState& cs = lane[l].committed[i];
+        const J2Update up = material.update_stress(Vec3(v[10][l], v[11][l], v[12][l]), cs);
+        v[0][l] = up.stress(0);
+        v[1][l] = up.stress(1);
+        v[2][l] = up.stress(2);
+        v[3][l] = up.elastic_energy;
+        v[4][l] = up.strain33_increment;
+        v[5][l] = cs.plastic_strain(0) + up.plastic_increment(0);
+        v[6][l] = cs.plastic_strain(1) + up.plastic_increment(1);
+        v[7][l] = cs.plastic_strain(2) + up.plastic_increment(2);
+        v[8][l] = up.peeq;
+        v[9][l] = cs.plastic_work + v[13][l] * up.dissipation;
+      }
+      t0 = v[0], t1 = v[1], t2 = v[2], energy = v[3], strain33 = v[4];
+      ep0 = v[5], ep1 = v[6], ep2 = v[7], peeq = v[8], work = v[9];
     }
     plastic_work += work;
     // point_stress(): S, selective S − p I with w p M_r into q_r.
@@ -296,7 +304,7 @@ template <int W, bool kShuffle, bool kFormGeometry>
     const PointLanes<Lanes>& p = pt[i];
     const LaneMask floor = 1e-12 < p.stretch;
     Lanes l3 = floor ? p.stretch : Lanes{} + 1e-12;
-    for (int l = 0; l < W; ++l) l3[l] = std::sqrt(l3[l]);
+    sqrt_lanes(l3);
     const Lanes det = p.f00 * p.f11 - p.f10 * p.f01;
     const Lanes m00 = p.f00 * p.s0 + p.f01 * p.s2, m01 = p.f00 * p.s2 + p.f01 * p.s1;
     const Lanes m10 = p.f10 * p.s0 + p.f11 * p.s2, m11 = p.f10 * p.s2 + p.f11 * p.s1;

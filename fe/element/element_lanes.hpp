@@ -6,6 +6,12 @@
 // source: lane l of a width-8 vector does exactly what lane l of a width-4 vector does.
 #pragma once
 
+#include <cmath>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace ringcrush::fe::lanes {
 
 typedef double Lanes __attribute__((vector_size(32)));  // one double per element of the group
@@ -42,6 +48,30 @@ template <class M>
   for (int l = 0; l < kWidthOf<M>; ++l) all = all && m[l] != 0;
   return all;
 }
+
+// Bit l set where lane l of a comparison mask is clear.
+template <class M>
+[[gnu::always_inline]] inline unsigned clear_lanes(const M& m) {
+  unsigned bits = 0;
+  for (int l = 0; l < kWidthOf<M>; ++l) bits |= m[l] == 0 ? 1u << l : 0u;
+  return bits;
+}
+
+// v[l] = √v[l] on every lane (IEEE square root, correctly rounded: the same bits as std::sqrt
+// lane by lane). Four lanes: lane by lane, as before; eight: one AVX-512 instruction (the
+// builtin behind _mm512_sqrt_pd, declared by <immintrin.h>, expanded only in the AVX-512 copy;
+// the intrinsic itself, a target("avx512f") function, cannot be inlined into this template).
+[[gnu::always_inline]] inline void sqrt_lanes(Lanes& v) {
+  for (int l = 0; l < 4; ++l) v[l] = std::sqrt(v[l]);
+}
+#if defined(__x86_64__) || defined(__i386__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // never called: always inlined into the AVX-512 copy
+[[gnu::always_inline]] inline void sqrt_lanes(Lanes8& v) {
+  v = __builtin_ia32_sqrtpd512_mask(v, v, static_cast<unsigned char>(0xff), _MM_FROUND_CUR_DIRECTION);
+}
+#pragma GCC diagnostic pop
+#endif
 
 // r[l] = {c[0][l], c[1][l], c[2][l], c[3][l]}: the 4 × 4 transpose of lanes in registers.
 [[gnu::always_inline]] inline void transpose4(const Lanes* c, Lanes* r) {
