@@ -1,4 +1,6 @@
-// cps8_force() on four elements at once, one vector lane per element (cps8_force_lanes.hpp).
+// cps8_force() on four or eight elements at once, one vector lane per element
+// (cps8_force_lanes.hpp): one template on the width W, lane l of either width doing the same
+// operations on element l.
 //
 // Every line below is a line of cps8_force() (cps8_force.cpp) and of the inline pieces it
 // calls — deformation_gradient() and green_lagrange() (kinematics.hpp), the elastic branch of

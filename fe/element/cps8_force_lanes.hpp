@@ -13,11 +13,12 @@
 // (J2PlaneStress::update_stress) lane by lane; the elastic trial, the common case, is
 // vectorised.
 //
-// Instruction sets: two copies are compiled — portable (the 4-wide operations as two SSE2
-// halves) and AVX2 WITHOUT fused multiply–add (which would round differently) — and
-// cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force() element by
-// element (the portable copy measured slower than that; README "Performance", session 8), so
-// one binary gives the same bits on every x86-64.
+// Instruction sets: three copies are compiled from one template on the width — portable (the
+// 4-wide operations as two SSE2 halves), AVX2 WITHOUT fused multiply–add (which would round
+// differently), and AVX-512 on eight elements a group (contraction off; the groups of eight
+// below) — and cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force()
+// element by element (the portable copy measured slower than that; README "Performance",
+// session 8), so one binary gives the same bits on every x86-64.
 #pragma once
 
 #include <array>
