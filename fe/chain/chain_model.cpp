@@ -66,9 +66,13 @@ double thickness_measure(const PointState* states, int points) {
   return l3;
 }
 
-// Elements per dealt chunk on two threads (work_dealer.hpp): ≈ 3 µs of work, long against
-// the shared counter's cost, short against a step.
-constexpr int kDealChunk = kCps8Lanes;  // one lane group (cps8_force_lanes.hpp) per chunk
+// Elements per lane group and per dealt chunk on two threads (work_dealer.hpp): eight where
+// the AVX-512 kernel runs (cps8_force_lanes.hpp), else four. One group per chunk: ≈ 3–5 µs
+// of work, long against the shared counter's cost, short against a step.
+int lane_group_width() {
+  static const int width = cps8_force_wide_lanes_available() ? kCps8WideLanes : kCps8Lanes;
+  return width;
+}
 
 }  // namespace
 
@@ -173,18 +177,18 @@ struct ChainModel::Impl {
     elastic = plastic = 0;
     int e = e0;
     if (!want_tangent) {
-      // Force only: four elements at a time on vector lanes (cps8_force_lanes.hpp), summed in
-      // element order as below; the remainder element by element (bitwise the same kernel).
-      LaneResults g;
-      for (; e + kCps8Lanes <= e1; e += kCps8Lanes) {
-        evaluate_lanes(e, u, viscous != nullptr, g);
-        for (int l = 0; l < kCps8Lanes; ++l) {
-          scatter(e + l, g.out[l].force, force);
-          if (viscous) scatter(e + l, g.viscous[l], viscous);
+      // Force only: eight or four elements at a time on vector lanes (cps8_force_lanes.hpp),
+      // summed in element order as below; then a group of four, the remainder element by
+      // element (bitwise the same kernel at every width).
+      const auto sum = [&](int b, const auto& g) {
+        for (int l = 0; l < static_cast<int>(g.out.size()); ++l) {
+          scatter(b + l, g.out[l].force, force);
+          if (viscous) scatter(b + l, g.viscous[l], viscous);
           elastic += g.out[l].elastic_energy;
           plastic += g.out[l].plastic_work;
         }
-      }
+      };
+      lane_groups(e, e1, viscous != nullptr, u, sum);
     }
     for (; e < e1; ++e) {
       evaluate_element(e, u, want_tangent, viscous != nullptr, eo, fv);
@@ -226,21 +230,23 @@ struct ChainModel::Impl {
     }
   }
 
-  // Elements [e, e + 4) force only on vector lanes (cps8_force_lanes.hpp): bitwise
-  // evaluate_element() on each. A geometry not on x_n is formed inside the kernel from the
-  // coordinates and not stored (the explicit step: once per step, README session 9); where the
-  // kernel cannot (no AVX2, an inverted element), it is updated and stored first as before.
+  // Elements [e, e + W) force only on vector lanes (cps8_force_lanes.hpp), W = 8 or 4:
+  // bitwise evaluate_element() on each. A geometry not on x_n is formed inside the kernel from
+  // the coordinates and not stored (the explicit step: once per step, README session 9); where
+  // the kernel cannot (no AVX2, an inverted element), it is updated and stored first as before.
+  template <int W>
   struct LaneResults {
-    std::array<Cps8Output, kCps8Lanes> out;
-    std::array<ElementVector, kCps8Lanes> viscous;
+    std::array<Cps8Output, W> out;
+    std::array<ElementVector, W> viscous;
   };
-  void evaluate_lanes(int e, const Eigen::VectorXd& u, bool viscous, LaneResults& r) {
+  template <int W>
+  void evaluate_lanes(int e, const Eigen::VectorXd& u, bool viscous, LaneResults<W>& r) {
     bool stale = false;
-    for (int l = 0; l < kCps8Lanes; ++l) stale = stale || geometry_epoch[e + l] != xn_epoch;
-    double ue[kCps8Lanes][16];
-    std::array<BulkViscousLoad, kCps8Lanes> load;
-    Cps8LaneGroup group;
-    for (int l = 0; l < kCps8Lanes; ++l) {
+    for (int l = 0; l < W; ++l) stale = stale || geometry_epoch[e + l] != xn_epoch;
+    double ue[W][16];
+    std::array<BulkViscousLoad, W> load;
+    Cps8LaneGroupOf<W> group;
+    for (int l = 0; l < W; ++l) {
       const auto& conn = topo.mesh.elements[e + l];
       for (int a = 0; a < 8; ++a) {
         ue[l][2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
@@ -255,13 +261,32 @@ struct ChainModel::Impl {
       }
     }
     if (stale) {
-      std::array<ElementCoords, kCps8Lanes> xe;
+      std::array<ElementCoords, W> xe;
       coordinates_lanes(e, u_n, xe);
-      if (cps8_force_lanes_on_coords(group, updater.tables(), {&xe[0], &xe[1], &xe[2], &xe[3]}, width, material))
-        return;
-      regeometry_lanes(e, u_n);
+      std::array<const ElementCoords*, W> x_n;
+      for (int l = 0; l < W; ++l) x_n[l] = &xe[l];
+      if (cps8_force_lanes_on_coords(group, updater.tables(), x_n, width, material)) return;
+      for (int h = 0; h < W; h += kCps8Lanes) regeometry_lanes(e + h, u_n);
     }
     cps8_force_lanes(group, material);
+  }
+  // Force only on [e, e1): groups of lane_group_width(), then of four, on vector lanes, each
+  // group's results handed to use(first element, LaneResults) in element order; e is left at
+  // the first element of the remainder (fewer than four), for the caller to do one by one.
+  template <class Use>
+  void lane_groups(int& e, int e1, bool viscous, const Eigen::VectorXd& u, const Use& use) {
+    if (lane_group_width() == kCps8WideLanes) {
+      LaneResults<kCps8WideLanes> g;
+      for (; e + kCps8WideLanes <= e1; e += kCps8WideLanes) {
+        evaluate_lanes(e, u, viscous, g);
+        use(e, g);
+      }
+    }
+    LaneResults<kCps8Lanes> g;
+    for (; e + kCps8Lanes <= e1; e += kCps8Lanes) {
+      evaluate_lanes(e, u, viscous, g);
+      use(e, g);
+    }
   }
 
   void scatter(int e, const ElementVector& fe, double* global) const {
@@ -284,19 +309,17 @@ struct ChainModel::Impl {
     ElementVector fv;
     int b = 0, end = 0;
     try {
-      LaneResults g;
-      while (from_back ? dealer.next_back(b, end) : dealer.next(b, end)) {
-        if (end - b == kCps8Lanes) {
-          evaluate_lanes(b, u, viscous, g);
-          for (int l = 0; l < kCps8Lanes; ++l) {
-            slot_force[b + l] = g.out[l].force;
-            if (viscous) slot_viscous[b + l] = g.viscous[l];
-            slot_energy[b + l] = {g.out[l].elastic_energy, g.out[l].plastic_work};
-          }
-          dealer.done(end - b);
-          continue;
+      const auto store = [&](int first, const auto& g) {
+        for (int l = 0; l < static_cast<int>(g.out.size()); ++l) {
+          slot_force[first + l] = g.out[l].force;
+          if (viscous) slot_viscous[first + l] = g.viscous[l];
+          slot_energy[first + l] = {g.out[l].elastic_energy, g.out[l].plastic_work};
         }
-        for (int e = b; e < end; ++e) {
+      };
+      while (from_back ? dealer.next_back(b, end) : dealer.next(b, end)) {
+        int e = b;
+        lane_groups(e, end, viscous, u, store);
+        for (; e < end; ++e) {
           evaluate_element(e, u, false, viscous, eo, fv);
           slot_force[e] = eo.force;
           if (viscous) slot_viscous[e] = fv;
@@ -358,10 +381,11 @@ struct ChainModel::Impl {
     }
   }
 
-  // Node coordinates X + u of elements [e, e + 4), as regeometry() forms them.
-  void coordinates_lanes(int e, const Eigen::VectorXd& u, std::array<ElementCoords, kCps8Lanes>& xe) const {
+  // Node coordinates X + u of elements [e, e + W), as regeometry() forms them.
+  template <std::size_t W>
+  void coordinates_lanes(int e, const Eigen::VectorXd& u, std::array<ElementCoords, W>& xe) const {
     const auto& mesh = topo.mesh;
-    for (int l = 0; l < kCps8Lanes; ++l)
+    for (int l = 0; l < static_cast<int>(W); ++l)
       for (int a = 0; a < 8; ++a) {
         const int n = mesh.elements[e + l][a];
         xe[l](a, 0) = mesh.nodes[n].x() + u(2 * n);
@@ -766,7 +790,7 @@ void ChainModel::evaluate_ending(const Eigen::VectorXd& u, bool want_tangent, Sy
     if (want_tangent && m.tangents.size() != mesh_.elements.size()) m.tangents.resize(mesh_.elements.size());
     Impl::ElementJob job{&m, &u, want_tangent, viscous};
     if (!want_tangent) {
-      m.dealer.reset(ne, kDealChunk);
+      m.dealer.reset(ne, lane_group_width());
       m.contact_ready.store(false, std::memory_order_relaxed);
     }
     m.fork->run(&Impl::ElementJob::run, &job, [&] {

@@ -19,7 +19,7 @@ template <bool kShuffle>
                                                      double thickness, const std::array<Cps8Geometry*, 4>& geo) {
   Lanes xs[2][8];
   gather_coords<kShuffle>(x, xs);
-  PointJacobian jac[13];
+  PointJacobian<Lanes> jac[13];
   if (!jacobians_lanes(t, xs, jac)) return false;
   const int n = t.points + t.reduced;
   double* out[4];

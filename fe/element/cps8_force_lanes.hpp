@@ -13,11 +13,12 @@
 // (J2PlaneStress::update_stress) lane by lane; the elastic trial, the common case, is
 // vectorised.
 //
-// Instruction sets: two copies are compiled — portable (the 4-wide operations as two SSE2
-// halves) and AVX2 WITHOUT fused multiply–add (which would round differently) — and
-// cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force() element by
-// element (the portable copy measured slower than that; README "Performance", session 8), so
-// one binary gives the same bits on every x86-64.
+// Instruction sets: three copies are compiled from one template on the width — portable (the
+// 4-wide operations as two SSE2 halves), AVX2 WITHOUT fused multiply–add (which would round
+// differently), and AVX-512 on eight elements a group (contraction off; the groups of eight
+// below) — and cps8_force_lanes() takes the AVX2 copy where the CPU has it, else cps8_force()
+// element by element (the portable copy measured slower than that; README "Performance",
+// session 8), so one binary gives the same bits on every x86-64.
 #pragma once
 
 #include <array>
@@ -28,6 +29,7 @@
 namespace ringcrush::fe {
 
 constexpr int kCps8Lanes = 4;
+constexpr int kCps8WideLanes = 8;  // AVX-512
 
 // One element of a lane group: the arguments of cps8_force().
 struct Cps8Lane {
@@ -38,7 +40,10 @@ struct Cps8Lane {
   Cps8Output* out = nullptr;
   const BulkViscousLoad* viscous = nullptr;  // all four set or all four null
 };
-using Cps8LaneGroup = std::array<Cps8Lane, kCps8Lanes>;
+template <int W>
+using Cps8LaneGroupOf = std::array<Cps8Lane, W>;
+using Cps8LaneGroup = Cps8LaneGroupOf<kCps8Lanes>;
+using Cps8WideLaneGroup = Cps8LaneGroupOf<kCps8WideLanes>;
 
 // cps8_force() on four elements of one integration rule. Throws std::invalid_argument if the
 // lanes mix rules or mix bulk viscosity on and off.
@@ -71,5 +76,21 @@ bool cps8_lanes_avx2_available();
 // the scalar kernel's 2×2 products into their sums and the lanes (which never fuse) would round
 // differently, so cps8_force_lanes() goes element by element there.
 bool cps8_lanes_bitwise_build();
+
+// Eight elements a group (AVX-512: 8 doubles a vector): the same kernel, lane l of the 8-wide
+// vector doing on element l exactly what lane l of the 4-wide one does, so every result is
+// bitwise that of the 4-lane kernel and of cps8_force(). AVX-512 without FMA contraction
+// (avx512f would let GCC fuse a product into its sum; the copy is compiled with contraction
+// off). cps8_force_wide_lanes_available(): AVX-512F on this CPU, a bitwise build and the Eigen
+// dot-product tree the lanes reproduce; elsewhere the callers use groups of four, and these
+// functions fall back: cps8_force_lanes() on two groups of four, ..._on_coords() returns false.
+bool cps8_force_wide_lanes_available();
+void cps8_force_lanes(const Cps8WideLaneGroup& group, const J2PlaneStress& material);
+bool cps8_force_lanes_on_coords(const Cps8WideLaneGroup& group, const Cps8RuleTables& tables,
+                                const std::array<const ElementCoords*, kCps8WideLanes>& x_n, double thickness,
+                                const J2PlaneStress& material);
+// The compiled AVX-512 copy (tests), only where cps8_lanes_avx512_available().
+void cps8_force_lanes_avx512(const Cps8WideLaneGroup& group, const J2PlaneStress& material);
+bool cps8_lanes_avx512_available();
 
 }  // namespace ringcrush::fe

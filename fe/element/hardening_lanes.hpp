@@ -1,6 +1,6 @@
 // The hardening table's σy(ᾱ) on the lanes of the element kernels (element_lanes.hpp), each
 // lane bitwise HardeningTable::yield_stress() (j2_plane_stress.cpp) on its own ᾱ: the kernel's
-// yield check reads σy(ᾱ_n) at every stress point of four elements. Always inlined, for the
+// yield check reads σy(ᾱ_n) at every stress point of four (or eight) elements. Always inlined, for the
 // same reason as element_lanes.hpp.
 #pragma once
 
@@ -17,17 +17,18 @@ namespace ringcrush::fe::lanes {
 // from the last, so the first one found last wins), the last point's σy beyond the table, the
 // first point's at ᾱ ≤ 0 (virgin points: then no segment is formed at all). One vector
 // formula per segment in place of an out-of-line call per lane.
-[[gnu::always_inline]] inline void yield_stress_lanes(const HardeningTable& table, const Lanes& a, Lanes& sy) {
+template <class V>
+[[gnu::always_inline]] inline void yield_stress_lanes(const HardeningTable& table, const V& a, V& sy) {
   const std::vector<HardeningPoint>& p = table.points();
-  const LaneMask virgin = a <= 0.0;
-  const Lanes first = Lanes{} + p.front().yield_stress_pa;
-  if (virgin[0] && virgin[1] && virgin[2] && virgin[3]) {
+  const auto virgin = a <= 0.0;
+  const V first = V{} + p.front().yield_stress_pa;
+  if (all_lanes(virgin)) {
     sy = first;
     return;
   }
-  Lanes r = Lanes{} + p.back().yield_stress_pa;
+  V r = V{} + p.back().yield_stress_pa;
   for (std::size_t i = p.size() - 1; i >= 1; --i) {
-    const Lanes v = p[i - 1].yield_stress_pa + table.rise(i - 1) * (a - p[i - 1].plastic_strain) / table.run(i - 1);
+    const V v = p[i - 1].yield_stress_pa + table.rise(i - 1) * (a - p[i - 1].plastic_strain) / table.run(i - 1);
     r = a < p[i].plastic_strain ? v : r;
   }
   sy = virgin ? first : r;

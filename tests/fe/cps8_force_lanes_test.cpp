@@ -2,8 +2,9 @@
 // cps8_force() on each element alone — itself bitwise its point-by-point form
 // (explicit_speed_test.cpp) — on deformed element sets with elastic and yielding points in
 // the same group, every rule, with and without bulk viscosity, in both compiled copies
-// (portable and AVX2). The set has 11 elements: two lane groups and a remainder of three that
-// the chain evaluates element by element, as ChainModel does.
+// (portable and AVX2), and the same for eight elements a group (AVX-512): 23 elements, two
+// groups of eight, a group of four and three one by one, as ChainModel deals them there — and
+// the eight-lane results are bitwise the four-lane ones on the same elements.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -18,14 +19,38 @@ using namespace ringcrush::fe;
 
 namespace {
 
-using LaneKernel = void (*)(const Cps8LaneGroup&, const J2PlaneStress&);
+template <int W>
+using LaneKernelOf = void (*)(const Cps8LaneGroupOf<W>&, const J2PlaneStress&);
+using LaneKernel = LaneKernelOf<kCps8Lanes>;
+using WideLaneKernel = LaneKernelOf<kCps8WideLanes>;
 
 using kernel_test::ElementResult;
 
-// Compares `kernel` with cps8_force() on `count` random elements (groups of 4, then the
-// remainder through cps8_force()); returns {points that yielded, points that stayed elastic}.
-std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool viscous, int count,
-                                       unsigned seed, const MaterialInput& steel = kernel_test::thesis_steel()) {
+// Groups of W elements [k, k + W) of the set into `kernel`, from k, while a whole group is
+// left; returns the first element not done.
+template <int W>
+int run_groups(LaneKernelOf<W> kernel, int k, int count, std::vector<Cps8Geometry>& geo,
+               std::vector<kernel_test::RandomElement>& el, std::vector<ElementResult>& lanes,
+               std::vector<BulkViscousLoad>& lane_load, bool viscous, const J2PlaneStress& material) {
+  for (; k + W <= count; k += W) {
+    Cps8LaneGroupOf<W> group;
+    for (int l = 0; l < W; ++l) {
+      const int e = k + l;
+      group[l] = Cps8Lane{&geo[e], el[e].du, el[e].committed.data(), lanes[e].trial.data(), &lanes[e].out,
+                          viscous ? &lane_load[e] : nullptr};
+    }
+    kernel(group, material);
+  }
+  return k;
+}
+
+// Compares `kernel` with cps8_force() on `count` random elements (groups of W; for W = 8 then
+// a group of four through the dispatched 4-lane kernel; the remainder through cps8_force());
+// returns {points that yielded, points that stayed elastic}. The lane results into *results.
+template <int W>
+std::array<int, 2> compare_with_scalar(LaneKernelOf<W> kernel, Integration rule, bool viscous, int count,
+                                       unsigned seed, const MaterialInput& steel = kernel_test::thesis_steel(),
+                                       std::vector<ElementResult>* results = nullptr) {
   std::mt19937 rng(seed);
   const J2PlaneStress material(steel);
   std::vector<kernel_test::RandomElement> el;
@@ -46,15 +71,10 @@ std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool
     cps8_force(geo[k], el[k].du, el[k].committed.data(), ref[k].trial.data(), material, ref[k].out,
                viscous ? &ref_load[k] : nullptr);
   }
-  int k = 0;
-  for (; k + kCps8Lanes <= count; k += kCps8Lanes) {
-    Cps8LaneGroup group;
-    for (int l = 0; l < kCps8Lanes; ++l) {
-      const int e = k + l;
-      group[l] = Cps8Lane{&geo[e], el[e].du, el[e].committed.data(), lanes[e].trial.data(), &lanes[e].out,
-                          viscous ? &lane_load[e] : nullptr};
-    }
-    kernel(group, material);
+  int k = run_groups<W>(kernel, 0, count, geo, el, lanes, lane_load, viscous, material);
+  if constexpr (W == kCps8WideLanes) {
+    const LaneKernel four = &cps8_force_lanes;
+    k = run_groups<kCps8Lanes>(four, k, count, geo, el, lanes, lane_load, viscous, material);
   }
   for (; k < count; ++k)
     cps8_force(geo[k], el[k].du, el[k].committed.data(), lanes[k].trial.data(), material, lanes[k].out,
@@ -71,15 +91,17 @@ std::array<int, 2> compare_with_scalar(LaneKernel kernel, Integration rule, bool
   if (viscous) {
     for (int e = 0; e < count; ++e) EXPECT_GT(ref[e].viscous.norm(), 0.0);
   }
+  if (results) *results = std::move(lanes);
   return branches;
 }
 
-void check_kernel(LaneKernel kernel, const MaterialInput& steel = kernel_test::thesis_steel()) {
+template <int W>
+void check_kernel(LaneKernelOf<W> kernel, const MaterialInput& steel = kernel_test::thesis_steel()) {
   unsigned seed = 3;
   for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective})
     for (bool viscous : {false, true}) {
       SCOPED_TRACE(::testing::Message() << "rule " << static_cast<int>(rule) << ", viscous " << viscous);
-      const auto branches = compare_with_scalar(kernel, rule, viscous, 11, seed++, steel);
+      const auto branches = compare_with_scalar<W>(kernel, rule, viscous, W == 4 ? 11 : 23, seed++, steel);
       EXPECT_GT(branches[0], 0);  // both material branches compared
       EXPECT_GT(branches[1], 0);
     }
@@ -89,16 +111,53 @@ void check_kernel(LaneKernel kernel, const MaterialInput& steel = kernel_test::t
 
 TEST(Cps8ForceLanes, PortableCopyIsBitwiseTheScalarKernel) {
   if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
-  check_kernel(&cps8_force_lanes_portable);
+  check_kernel<4>(&cps8_force_lanes_portable);
 }
 
 TEST(Cps8ForceLanes, Avx2CopyIsBitwiseTheScalarKernel) {
   if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
   if (!cps8_lanes_avx2_available()) GTEST_SKIP() << "this CPU has no AVX2";
-  check_kernel(&cps8_force_lanes_avx2);
+  check_kernel<4>(&cps8_force_lanes_avx2);
 }
 
-TEST(Cps8ForceLanes, DispatchedKernelIsBitwiseTheScalarKernel) { check_kernel(&cps8_force_lanes); }
+TEST(Cps8ForceLanes, DispatchedKernelIsBitwiseTheScalarKernel) {
+  const LaneKernel kernel = &cps8_force_lanes;
+  check_kernel<4>(kernel);
+}
+
+TEST(Cps8ForceLanes, Avx512CopyIsBitwiseTheScalarKernel) {
+  if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
+  if (!cps8_lanes_avx512_available()) GTEST_SKIP() << "this CPU has no AVX-512F: the eight-lane copy cannot run";
+  check_kernel<8>(&cps8_force_lanes_avx512);
+}
+
+// Eight a group through the dispatch: the AVX-512 copy, or two groups of four without it.
+TEST(Cps8ForceLanes, DispatchedWideKernelIsBitwiseTheScalarKernel) {
+  const WideLaneKernel kernel = &cps8_force_lanes;
+  check_kernel<8>(kernel);
+}
+
+// Lane l of the eight-lane copy and lane l mod 4 of the four-lane copy (AVX2) give the same bits
+// on the same 23 elements, every rule, with and without bulk viscosity.
+TEST(Cps8ForceLanes, Avx512CopyIsBitwiseTheAvx2Copy) {
+  if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
+  if (!cps8_lanes_avx512_available()) GTEST_SKIP() << "this CPU has no AVX-512F: the eight-lane copy cannot run";
+  unsigned seed = 11;
+  for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective})
+    for (bool viscous : {false, true}) {
+      SCOPED_TRACE(::testing::Message() << "rule " << static_cast<int>(rule) << ", viscous " << viscous);
+      std::vector<ElementResult> four, eight;
+      compare_with_scalar<4>(&cps8_force_lanes_avx2, rule, viscous, 23, seed, kernel_test::thesis_steel(), &four);
+      compare_with_scalar<8>(&cps8_force_lanes_avx512, rule, viscous, 23, seed, kernel_test::thesis_steel(), &eight);
+      ++seed;
+      ASSERT_EQ(four.size(), eight.size());
+      const int points = rule == Integration::Reduced ? 4 : 9;
+      for (std::size_t e = 0; e < four.size(); ++e) {
+        SCOPED_TRACE(::testing::Message() << "element " << e);
+        kernel_test::expect_bitwise_equal(eight[e], four[e], points);
+      }
+    }
+}
 
 // The lanes look σy(ᾱ_n) up on the vector (yield_stress_lanes, cps8_force_lanes.cpp): a table
 // of four points, softening at the end, with committed ᾱ (0 … 0.04) on every segment, at 0 and
@@ -107,8 +166,9 @@ TEST(Cps8ForceLanes, MultiSegmentHardeningIsBitwiseTheScalarKernel) {
   if (!cps8_lanes_bitwise_build()) GTEST_SKIP() << "FMA build: the lanes are not used";
   MaterialInput steel = kernel_test::thesis_steel();
   steel.hardening = {{273e6, 0.0}, {290e6, 0.005}, {315e6, 0.015}, {300e6, 0.03}};
-  check_kernel(&cps8_force_lanes_portable, steel);
-  if (cps8_lanes_avx2_available()) check_kernel(&cps8_force_lanes_avx2, steel);
+  check_kernel<4>(&cps8_force_lanes_portable, steel);
+  if (cps8_lanes_avx2_available()) check_kernel<4>(&cps8_force_lanes_avx2, steel);
+  if (cps8_lanes_avx512_available()) check_kernel<8>(&cps8_force_lanes_avx512, steel);
 }
 
 TEST(Cps8ForceLanes, RejectsMixedRules) {
@@ -122,5 +182,19 @@ TEST(Cps8ForceLanes, RejectsMixedRules) {
   Cps8LaneGroup group;
   for (int l = 0; l < kCps8Lanes; ++l)
     group[l] = Cps8Lane{l == 2 ? &selective : &full, el.du, el.committed.data(), trial[l].data(), &out[l], nullptr};
+  EXPECT_THROW(cps8_force_lanes(group, material), std::invalid_argument);
+}
+
+TEST(Cps8ForceLanes, WideGroupRejectsMixedRules) {
+  std::mt19937 rng(1);
+  const J2PlaneStress material(kernel_test::thesis_steel());
+  const auto el = kernel_test::random_element(rng, 1e-4, false);
+  const Cps8Geometry full = cps8_geometry(el.x, Integration::Full, 0.0125);
+  const Cps8Geometry selective = cps8_geometry(el.x, Integration::Selective, 0.0125);
+  std::array<Cps8Output, kCps8WideLanes> out;
+  std::array<std::array<PointState, 9>, kCps8WideLanes> trial{};
+  Cps8WideLaneGroup group;
+  for (int l = 0; l < kCps8WideLanes; ++l)  // the odd one in the upper half
+    group[l] = Cps8Lane{l == 6 ? &selective : &full, el.du, el.committed.data(), trial[l].data(), &out[l], nullptr};
   EXPECT_THROW(cps8_force_lanes(group, material), std::invalid_argument);
 }

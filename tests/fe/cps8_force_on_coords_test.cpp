@@ -6,7 +6,8 @@
 // points in the same group. Any change of an operation's order in the lane geometry
 // (the Jacobian's dot-product tree, the gradients, the weights) changes the last bits of
 // some of these values on random elements and fails the test. The lanes' own Cps8Geometry is
-// neither read (it holds the geometry of another configuration) nor written.
+// neither read (it holds the geometry of another configuration) nor written. The same for
+// eight elements a group (the AVX-512 copy, where the CPU has it).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -40,13 +41,14 @@ void move(kernel_test::RandomElement& el, double angle, ElementCoords& x) {
   }
 }
 
-// Returns {points that yielded, points that stayed elastic}.
+// Groups of W; returns {points that yielded, points that stayed elastic}.
+template <int W>
 std::array<int, 2> compare_with_update_then_scalar(Integration rule, bool viscous, int groups, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> angle(-3.0, 3.0);
   const J2PlaneStress material(kernel_test::thesis_steel());
   const Cps8GeometryUpdater updater(rule);
-  const int count = groups * kCps8Lanes;
+  const int count = groups * W;
   std::vector<kernel_test::RandomElement> el;
   std::vector<ElementCoords> x_n;
   std::vector<Cps8Geometry> stale, updated;
@@ -69,15 +71,16 @@ std::array<int, 2> compare_with_update_then_scalar(Integration rule, bool viscou
                viscous ? &ref_load[k] : nullptr);
   }
   const std::vector<Cps8Geometry> stale_before = stale;
-  for (int k = 0; k < count; k += kCps8Lanes) {
-    Cps8LaneGroup group;
-    for (int l = 0; l < kCps8Lanes; ++l) {
+  for (int k = 0; k < count; k += W) {
+    Cps8LaneGroupOf<W> group;
+    std::array<const ElementCoords*, W> x;
+    for (int l = 0; l < W; ++l) {
       const int e = k + l;
       group[l] = Cps8Lane{&stale[e], el[e].du, el[e].committed.data(), lanes[e].trial.data(), &lanes[e].out,
                           viscous ? &lane_load[e] : nullptr};
+      x[l] = &x_n[e];
     }
-    EXPECT_TRUE(cps8_force_lanes_on_coords(group, updater.tables(), {&x_n[k], &x_n[k + 1], &x_n[k + 2], &x_n[k + 3]},
-                                           kWidth, material));
+    EXPECT_TRUE(cps8_force_lanes_on_coords(group, updater.tables(), x, kWidth, material));
   }
   std::array<int, 2> branches{0, 0};
   for (int e = 0; e < count; ++e) {
@@ -105,10 +108,42 @@ TEST(Cps8ForceOnCoords, IsBitwiseUpdateThenScalarKernel) {
   for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective})
     for (bool viscous : {false, true}) {
       SCOPED_TRACE(::testing::Message() << "rule " << static_cast<int>(rule) << ", viscous " << viscous);
-      const auto branches = compare_with_update_then_scalar(rule, viscous, 3, seed++);
+      const auto branches = compare_with_update_then_scalar<kCps8Lanes>(rule, viscous, 3, seed++);
       EXPECT_GT(branches[0], 0);  // both material branches compared
       EXPECT_GT(branches[1], 0);
     }
+}
+
+TEST(Cps8ForceOnCoords, WideGroupIsBitwiseUpdateThenScalarKernel) {
+  if (!cps8_force_wide_lanes_available()) GTEST_SKIP() << "no eight-lane kernel here (no AVX-512F, or an FMA build)";
+  unsigned seed = 25;
+  for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective})
+    for (bool viscous : {false, true}) {
+      SCOPED_TRACE(::testing::Message() << "rule " << static_cast<int>(rule) << ", viscous " << viscous);
+      const auto branches = compare_with_update_then_scalar<kCps8WideLanes>(rule, viscous, 2, seed++);
+      EXPECT_GT(branches[0], 0);
+      EXPECT_GT(branches[1], 0);
+    }
+}
+
+// Without the eight-lane kernel the wide entry point forms nothing and says so.
+TEST(Cps8ForceOnCoords, WideGroupDeclinesWithoutAvx512) {
+  if (cps8_force_wide_lanes_available()) GTEST_SKIP() << "this CPU and build run the eight-lane kernel";
+  std::mt19937 rng(3);
+  const J2PlaneStress material(kernel_test::thesis_steel());
+  const Cps8GeometryUpdater updater(Integration::Full);
+  const auto el = kernel_test::random_element(rng, 1e-4, false);
+  Cps8Geometry geo = cps8_geometry(el.x, Integration::Full, kWidth);
+  std::array<ElementResult, kCps8WideLanes> out;
+  Cps8WideLaneGroup group;
+  std::array<const ElementCoords*, kCps8WideLanes> x;
+  for (int l = 0; l < kCps8WideLanes; ++l) {
+    out[l].out.force.setConstant(-7.0);
+    group[l] = Cps8Lane{&geo, el.du, el.committed.data(), out[l].trial.data(), &out[l].out, nullptr};
+    x[l] = &el.x;
+  }
+  EXPECT_FALSE(cps8_force_lanes_on_coords(group, updater.tables(), x, kWidth, material));
+  for (const auto& o : out) EXPECT_EQ(o.out.force, ElementVector::Constant(-7.0));
 }
 
 // An inverted element at x_n: nothing is written and false is returned, so that the caller
@@ -138,6 +173,35 @@ TEST(Cps8ForceOnCoords, InvertedElementWritesNothing) {
     for (const auto& p : out[l].trial) EXPECT_EQ(p.peeq, -3.0);
   }
   EXPECT_THROW(updater.update(x[1], kWidth, geo[1]), std::invalid_argument);
+}
+
+// The same in a group of eight, the inverted element in the upper half (lane 6).
+TEST(Cps8ForceOnCoords, WideGroupInvertedElementWritesNothing) {
+  if (!cps8_force_wide_lanes_available()) GTEST_SKIP() << "no eight-lane kernel here (no AVX-512F, or an FMA build)";
+  std::mt19937 rng(7);
+  const J2PlaneStress material(kernel_test::thesis_steel());
+  const Cps8GeometryUpdater updater(Integration::Selective);
+  std::array<kernel_test::RandomElement, kCps8WideLanes> el;
+  std::array<ElementCoords, kCps8WideLanes> x;
+  std::array<const ElementCoords*, kCps8WideLanes> x_n;
+  std::array<Cps8Geometry, kCps8WideLanes> geo;
+  std::array<ElementResult, kCps8WideLanes> out;
+  Cps8WideLaneGroup group;
+  for (int l = 0; l < kCps8WideLanes; ++l) {
+    el[l] = kernel_test::random_element(rng, 1e-4, false);
+    x[l] = el[l].x;
+    x_n[l] = &x[l];
+    geo[l] = cps8_geometry(el[l].x, Integration::Selective, kWidth);
+    out[l].out.force.setConstant(-7.0);
+    for (auto& p : out[l].trial) p.peeq = -3.0;
+    group[l] = Cps8Lane{&geo[l], el[l].du, el[l].committed.data(), out[l].trial.data(), &out[l].out, nullptr};
+  }
+  x[6].col(0) *= -1.0;  // mirrored: det J < 0
+  EXPECT_FALSE(cps8_force_lanes_on_coords(group, updater.tables(), x_n, kWidth, material));
+  for (int l = 0; l < kCps8WideLanes; ++l) {
+    EXPECT_EQ(out[l].out.force, ElementVector::Constant(-7.0));
+    for (const auto& p : out[l].trial) EXPECT_EQ(p.peeq, -3.0);
+  }
 }
 
 TEST(Cps8ForceOnCoords, RejectsTablesOfAnotherRule) {

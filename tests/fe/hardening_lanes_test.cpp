@@ -1,5 +1,5 @@
 // yield_stress_lanes() (fe/element/hardening_lanes.hpp), the element kernels' σy(ᾱ_n) on four
-// lanes, is bitwise HardeningTable::yield_stress() on each lane: ᾱ at 0, −0, negative, inside
+// (and eight) lanes, is bitwise HardeningTable::yield_stress() on each lane: ᾱ at 0, −0, negative, inside
 // every segment, exactly at the break points, beyond the last point and NaN, mixed in one
 // vector, for tables of one, two and four points (one falling).
 #include <gtest/gtest.h>
@@ -17,15 +17,19 @@ namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// Every 4-lane window of `alphas` (all lanes virgin, mixed, none virgin): the number of lanes
-// that differ from the scalar table.
+// Every window of W lanes of `alphas` (all lanes virgin, mixed, none virgin): the number of
+// lanes that differ from the scalar table. (The eight-lane vector is here compiled for the
+// baseline instruction set, the template's arithmetic the same as in the AVX-512 kernel, whose
+// own code Cps8ForceLanes.MultiSegmentHardeningIsBitwiseTheScalarKernel checks.)
+template <class V>
 int lanes_differing(const HardeningTable& table, const std::vector<double>& alphas) {
+  constexpr int W = lanes::kWidthOf<V>;
   int n = 0;
-  for (std::size_t k = 0; k + 4 <= alphas.size(); ++k) {
-    const lanes::Lanes a{alphas[k], alphas[k + 1], alphas[k + 2], alphas[k + 3]};
-    lanes::Lanes sy;
+  for (std::size_t k = 0; k + W <= alphas.size(); ++k) {
+    V a, sy;
+    for (int l = 0; l < W; ++l) a[l] = alphas[k + static_cast<std::size_t>(l)];
     lanes::yield_stress_lanes(table, a, sy);
-    for (int l = 0; l < 4; ++l) n += !same_bits(sy[l], table.yield_stress(a[l]));
+    for (int l = 0; l < W; ++l) n += !same_bits(sy[l], table.yield_stress(a[l]));
   }
   return n;
 }
@@ -48,7 +52,8 @@ TEST(HardeningLanes, YieldStressIsBitwiseTheTableOnEveryLane) {
         std::vector<HardeningPoint>{{273e6, 0.0}, {290e6, 0.005}, {315e6, 0.015}, {300e6, 0.03}}}) {
     SCOPED_TRACE(::testing::Message() << pts.size() << " points");
     const HardeningTable table(pts);
-    EXPECT_EQ(lanes_differing(table, alphas_over(pts, 7)), 0);
+    EXPECT_EQ(lanes_differing<lanes::Lanes>(table, alphas_over(pts, 7)), 0);
+    EXPECT_EQ(lanes_differing<lanes::Lanes8>(table, alphas_over(pts, 7)), 0);
   }
 }
 

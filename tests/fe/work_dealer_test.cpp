@@ -78,8 +78,9 @@ TEST(WorkDealer, TwoThreadsRacingFromBothEndsMeetOnce) {
   }
 }
 
-// 3 half rings of 6 elements: 18 elements, chunks of 4 (the last one 2 elements), the sums'
-// halves [0, 8) and [8, 18); bulk viscosity on, three committed increments.
+// 3 half rings of 6 elements: 18 elements, chunks of one lane group — 4 (the last one 2
+// elements), or 8 with AVX-512 (the last one 2) — the sums' halves [0, 8) and [8, 18); bulk
+// viscosity on, three committed increments.
 TEST(WorkDealer, ChainPassFromBothEndsIsTheOneThreadPass) {
   for (Integration rule : {Integration::Reduced, Integration::Selective}) {
     ChainInput in;
@@ -92,4 +93,20 @@ TEST(WorkDealer, ChainPassFromBothEndsIsTheOneThreadPass) {
     ASSERT_EQ(pass.serial.mesh().elements.size(), 18u);
     pass.run(3, 21);
   }
+}
+
+// 30 elements, so that the lane groups of the two passes differ: one thread sums [0, 13) as
+// 8 + 4 + 1 (AVX-512; else 4 + 4 + 4 + 1) and [13, 30) as 8 + 8 + 1; two threads deal chunks
+// [0, 8), [8, 16), [16, 24), [24, 30), the last one a group of four and two elements alone.
+// Every arrangement of groups of eight, four and one gives the same bits (cps8_force_lanes.hpp).
+TEST(WorkDealer, LaneGroupsOfEightFourAndOneAreTheOneThreadPass) {
+  ChainInput in;
+  in.rings = 3;
+  in.mesh.elements_around = 10;
+  in.joints = JointKind::Free;
+  in.integration = Integration::Selective;
+  in.bulk_viscosity = 0.06;
+  test_support::ThreadedChainPass pass(in);
+  ASSERT_EQ(pass.serial.mesh().elements.size(), 30u);
+  pass.run(3, 23);
 }
