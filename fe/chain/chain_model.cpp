@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -86,6 +87,10 @@ struct ChainModel::Impl {
   Eigen::VectorXd mass, u_n, u_last;
   bool trial_fresh = false;
   std::vector<Eigen::Vector2d> x;
+  // x_n = X + u_n per node: the x of the evaluation that was committed (commit_trial() swaps
+  // the two), the same sums as X + u_n formed element by element, so the explicit step's
+  // element pass reads one pair per node for the coordinates instead of X and u_n.
+  std::vector<Eigen::Vector2d> x_n;
   std::vector<ContactContribution> contributions;
   std::unique_ptr<SurfaceContact> surface;
   std::vector<RigidFace> faces;
@@ -94,6 +99,14 @@ struct ChainModel::Impl {
   // and the shape measure there; in between λ is scaled with the shape measure.
   std::vector<std::array<double, 8>> element_mass;
   std::vector<double> omega2_exact, shape_exact, thickness_exact;
+  // bulk_scale / √omega2_exact per element (the bulk-viscous coefficient b1 ρ c_d L_e), set
+  // wherever omega2_exact is: the same quotient as formed at each evaluation before, without
+  // a square root and a division per element and step.
+  std::vector<double> bulk_coefficient;
+  void set_omega2(std::size_t e, double omega2) {
+    omega2_exact[e] = omega2;
+    bulk_coefficient[e] = bulk_scale / std::sqrt(omega2);
+  }
   MassScalingReport scaling;  // element_mass and omega2_exact are the scaled ones
   std::vector<Eigen::Vector2d> x_bound;  // current coordinates (stable_step)
   // The element part of the last stable_step() (ω² and what set it), reused by
@@ -182,8 +195,7 @@ struct ChainModel::Impl {
       // element (bitwise the same kernel at every width).
       const auto sum = [&](int b, const auto& g) {
         for (int l = 0; l < static_cast<int>(g.out.size()); ++l) {
-          scatter(b + l, g.out[l].force, force);
-          if (viscous) scatter(b + l, g.viscous[l], viscous);
+          scatter(b + l, g.out[l].force, g.viscous[l], force, viscous);
           elastic += g.out[l].elastic_energy;
           plastic += g.out[l].plastic_work;
         }
@@ -192,8 +204,7 @@ struct ChainModel::Impl {
     }
     for (; e < e1; ++e) {
       evaluate_element(e, u, want_tangent, viscous != nullptr, eo, fv);
-      scatter(e, eo.force, force);
-      if (viscous) scatter(e, fv, viscous);
+      scatter(e, eo.force, fv, force, viscous);
       elastic += eo.elastic_energy;
       plastic += eo.plastic_work;
       if (want_tangent) {
@@ -217,7 +228,7 @@ struct ChainModel::Impl {
     const std::size_t p0 = static_cast<std::size_t>(e) * points_per_element;
     if (viscous) {
       fv.setZero();
-      const double coefficient = bulk_scale / std::sqrt(omega2_exact[e]);
+      const double coefficient = bulk_coefficient[e];
       if (want_tangent) {
         cps8_evaluate(geometry[e], ue, &committed[p0], &trial[p0], material, true, eo);
         add_bulk_viscous_force(geometry[e], ue, increment_time, coefficient, fv);
@@ -244,28 +255,24 @@ struct ChainModel::Impl {
     bool stale = false;
     for (int l = 0; l < W; ++l) stale = stale || geometry_epoch[e + l] != xn_epoch;
     double ue[W][16];
+    std::array<ElementCoords, W> xe;
     std::array<BulkViscousLoad, W> load;
     Cps8LaneGroupOf<W> group;
     for (int l = 0; l < W; ++l) {
-      const auto& conn = topo.mesh.elements[e + l];
-      for (int a = 0; a < 8; ++a) {
-        ue[l][2 * a] = u(2 * conn[a]) - u_n(2 * conn[a]);
-        ue[l][2 * a + 1] = u(2 * conn[a] + 1) - u_n(2 * conn[a] + 1);
-      }
+      if (stale) gather_increment(e + l, u, ue[l], &xe[l]);
+      else gather_increment(e + l, u, ue[l], nullptr);
       const std::size_t p0 = static_cast<std::size_t>(e + l) * points_per_element;
       group[l] = Cps8Lane{&geometry[e + l], ue[l], &committed[p0], &trial[p0], &r.out[l], nullptr};
       if (viscous) {
         r.viscous[l].setZero();
-        load[l] = BulkViscousLoad{bulk_scale / std::sqrt(omega2_exact[e + l]), increment_time, &r.viscous[l]};
+        load[l] = BulkViscousLoad{bulk_coefficient[e + l], increment_time, &r.viscous[l]};
         group[l].viscous = &load[l];
       }
     }
     if (stale) {
-      std::array<ElementCoords, W> xe;
-      coordinates_lanes(e, u_n, xe);
-      std::array<const ElementCoords*, W> x_n;
-      for (int l = 0; l < W; ++l) x_n[l] = &xe[l];
-      if (cps8_force_lanes_on_coords(group, updater.tables(), x_n, width, material)) return;
+      std::array<const ElementCoords*, W> x_lanes;
+      for (int l = 0; l < W; ++l) x_lanes[l] = &xe[l];
+      if (cps8_force_lanes_on_coords(group, updater.tables(), x_lanes, width, material)) return;
       for (int h = 0; h < W; h += kCps8Lanes) regeometry_lanes(e + h, u_n);
     }
     cps8_force_lanes(group, material);
@@ -289,11 +296,40 @@ struct ChainModel::Impl {
     }
   }
 
-  void scatter(int e, const ElementVector& fe, double* global) const {
+  // A node's two dofs in the lanes of a 16-byte vector (GCC vector extension: per lane the
+  // scalar IEEE operation, so every sum and difference below is bitwise the scalar one).
+  using Pair = double __attribute__((vector_size(16)));
+  static Pair load_pair(const double* p) {
+    Pair v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  static void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
+
+  // Element e's increments u − u_n (16, dof order) and, when xe is given, its node
+  // coordinates x_n (from x_n, = X + u_n as regeometry() forms them): one pass over its nodes.
+  void gather_increment(int e, const Eigen::VectorXd& u, double* du, ElementCoords* xe) const {
+    const auto& conn = topo.mesh.elements[e];
+    const double *pu = u.data(), *pn = u_n.data();
+    for (int a = 0; a < 8; ++a) {
+      const std::size_t d = 2 * static_cast<std::size_t>(conn[a]);
+      store_pair(du + 2 * a, load_pair(pu + d) - load_pair(pn + d));
+      if (xe) {
+        const Eigen::Vector2d& p = x_n[static_cast<std::size_t>(conn[a])];
+        (*xe)(a, 0) = p.x();
+        (*xe)(a, 1) = p.y();
+      }
+    }
+  }
+
+  // Element e's force (and bulk-viscous force, viscous non-null) added into the global
+  // vectors, node by node: per dof the one addition of the element to the sum.
+  void scatter(int e, const ElementVector& fe, const ElementVector& qe, double* force, double* viscous) const {
     const auto& conn = topo.mesh.elements[e];
     for (int a = 0; a < 8; ++a) {
-      global[2 * conn[a]] += fe(2 * a);
-      global[2 * conn[a] + 1] += fe(2 * a + 1);
+      const std::size_t d = 2 * static_cast<std::size_t>(conn[a]);
+      store_pair(force + d, load_pair(force + d) + load_pair(fe.data() + 2 * a));
+      if (viscous) store_pair(viscous + d, load_pair(viscous + d) + load_pair(qe.data() + 2 * a));
     }
   }
 
@@ -354,8 +390,7 @@ struct ChainModel::Impl {
     if (!dealer.wait_all()) return false;
     elastic = plastic = 0;
     for (int e = e0; e < e1; ++e) {
-      scatter(e, slot_force[e], force);
-      if (viscous) scatter(e, slot_viscous[e], viscous);
+      scatter(e, slot_force[e], slot_viscous[e], force, viscous);
       elastic += slot_energy[e][0];
       plastic += slot_energy[e][1];
     }
@@ -444,6 +479,8 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.u_n = Eigen::VectorXd::Zero(2 * nodes);
   m.u_last = m.u_n;
   m.x.resize(nodes);
+  m.x_n.resize(nodes);
+  for (int i = 0; i < nodes; ++i) m.x_n[i] = mesh_.nodes[i] + Eigen::Vector2d(m.u_n(2 * i), m.u_n(2 * i + 1));
   m.committed.assign(static_cast<std::size_t>(ne) * m.points_per_element, PointState{});
   m.trial = m.committed;
   m.system = std::make_unique<SparseSystem>(nodes, m.topo.fixed_dofs, mesh_.elements);
@@ -457,6 +494,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
   m.geometry_epoch.assign(ne, m.xn_epoch);  // cps8_geometry() below: on x_0
   m.element_mass.resize(ne);
   m.omega2_exact.resize(ne);
+  m.bulk_coefficient.resize(ne);
   m.shape_exact.resize(ne);
   m.thickness_exact.assign(ne, 1.0);
   // Mass scaling (explicit, opt-in, mass_scaling.hpp) needs the element's stiffness again.
@@ -468,7 +506,7 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
     m.element_mass[e] = hrz_lumped_mass(xe, input.density_kg_m3, input.ring.width_m);
     m.geometry[e] = cps8_geometry(xe, input.integration, input.ring.width_m);
     const ElementMatrix k = element_elastic_stiffness(xe, input.integration, input.ring.width_m, m.material);
-    m.omega2_exact[e] = element_max_eigenvalue(k, m.element_mass[e]);
+    m.set_omega2(e, element_max_eigenvalue(k, m.element_mass[e]));
     if (input.step_bound == StepBound::Assembled) m.stiffness_exact.push_back(k);
     if (scaling) k_scaling.push_back(k);
     m.shape_exact[e] = shape_measure(mesh_.elements[e], mesh_.nodes);
@@ -480,7 +518,9 @@ ChainModel::ChainModel(const ChainInput& input) : input_(input) {
                                    m.element_mass, m.omega2_exact);
   // λ_max of a scaled element from its eigenproblem, as every later re-bound computes it.
   for (int e = 0; scaling && e < ne; ++e)
-    if (m.scaling.element_scale[e] != 1.0) m.omega2_exact[e] = element_max_eigenvalue(k_scaling[e], m.element_mass[e]);
+    if (m.scaling.element_scale[e] != 1.0) m.set_omega2(e, element_max_eigenvalue(k_scaling[e], m.element_mass[e]));
+  // scale_element_masses() rescaled omega2_exact in place: the coefficients follow it.
+  for (int e = 0; e < ne; ++e) m.set_omega2(e, m.omega2_exact[e]);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 8; ++a) {
       m.mass(2 * mesh_.elements[e][a]) += m.element_mass[e][a];
@@ -879,6 +919,9 @@ void ChainModel::commit_trial() {
   // u_last equals u here; it serves only the freshness test above, which the next
   // evaluate() re-arms by writing it, so it gives its buffer to u_n (no copy).
   std::swap(m.u_n, m.u_last);
+  // x was formed from u_last in the same evaluation: it is X + u_n now (the next evaluation
+  // writes the whole of x again before reading it).
+  std::swap(m.x_n, m.x);
   // The next increment is described on this configuration (kinematics.hpp): the element
   // geometry is re-derived on x_n in the next element pass (Impl::elements).
   ++m.xn_epoch;
@@ -913,7 +956,7 @@ StableStep ChainModel::stable_step(const Eigen::VectorXd& u) const {
       try {
         const ElementMatrix k =
             element_elastic_stiffness(xe, input_.integration, input_.ring.width_m, m.material, states, ppe);
-        m.omega2_exact[e] = element_max_eigenvalue(k, m.element_mass[e]);
+        m.set_omega2(e, element_max_eigenvalue(k, m.element_mass[e]));
         if (assembled) m.stiffness_exact[e] = k;
       } catch (const std::invalid_argument& err) {
         throw std::runtime_error(fmt::format("stable step: element {} (ring {}): {}", e + 1, mesh_.element_ring[e] + 1, err.what()));
