@@ -90,26 +90,37 @@ double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
   const bool closed = !ring.half;
   const double points_per_ring = ring.half ? 2.0 * static_cast<double>(n - 1) : static_cast<double>(n);
   if (turning_tolerance < 0) turning_tolerance = 0.1 * 2 * pi / points_per_ring;
-  // Signed turning angle at each interior point; its sum gives the ring's orientation.
+  // Neighbours of point j. A half ring's end points A and B lie on the symmetry axis x = 0:
+  // their missing neighbour is the mirror image of the one they have, so that B — the middle
+  // of every wrap's inverted arc — turns as it does on the whole ring (it was skipped, which
+  // read a wrapped FE half ring one outer-node spacing short).
+  const auto mirrored = [](Eigen::Vector2d p) { p.x() = -p.x(); return p; };
+  const auto previous = [&](std::size_t j) {
+    return closed || j > 0 ? ring.points[(j + n - 1) % n] : mirrored(ring.points[1]);
+  };
+  const auto next = [&](std::size_t j) {
+    return closed || j + 1 < n ? ring.points[(j + 1) % n] : mirrored(ring.points[n - 2]);
+  };
+  // On a half ring an end point stands once in the whole ring, an inner point twice.
+  const auto share = [&](std::size_t j) { return !closed && (j == 0 || j + 1 == n) ? 0.5 : 1.0; };
+  // Signed turning angle at each point; its sum gives the ring's orientation.
   std::vector<double> turning(n, 0.0);
   double total = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    if (!closed && (j == 0 || j + 1 == n)) continue;
-    const Eigen::Vector2d a = ring.points[j] - ring.points[(j + n - 1) % n];
-    const Eigen::Vector2d b = ring.points[(j + 1) % n] - ring.points[j];
+    const Eigen::Vector2d a = ring.points[j] - previous(j);
+    const Eigen::Vector2d b = next(j) - ring.points[j];
     turning[j] = std::atan2(cross(a, b), a.dot(b));
-    total += turning[j];
+    total += share(j) * turning[j];
   }
   const double orientation = total >= 0 ? 1.0 : -1.0;
   double length = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
-    if (!closed && (j == 0 || j + 1 == n)) continue;
     const double theta = std::abs(std::remainder(ring.material_angle[j], 2 * pi));
     if (theta < 0.5 * pi) continue;  // upper half
     if (orientation * turning[j] < -turning_tolerance) {
-      const double before = (ring.points[j] - ring.points[(j + n - 1) % n]).norm();
-      const double after = (ring.points[(j + 1) % n] - ring.points[j]).norm();
-      length += 0.5 * (before + after);
+      const double before = (ring.points[j] - previous(j)).norm();
+      const double after = (next(j) - ring.points[j]).norm();
+      length += share(j) * 0.5 * (before + after);
     }
   }
   return ring.half ? 2 * length : length;

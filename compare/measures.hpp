@@ -38,7 +38,8 @@ double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double 
 // Inverted arc S (m): length of the ring's lower half (θ ∈ [π/2, 3π/2]) whose curvature
 // has reversed sign, i.e. whose turning angle at a point is opposite to the ring's overall
 // turning by more than `turning_tolerance` rad (default: a tenth of 2π/N, N points per
-// whole ring). Whole-ring length (doubled for a half ring).
+// whole ring). Whole-ring length (doubled for a half ring; a half ring's end points A and B,
+// on the symmetry axis, turn against their mirrored neighbour and count once).
 double inverted_arc_length(const RingShape& ring, double turning_tolerance = -1.0);
 
 // The wrap-around flag is decided on the inverted arc S alone (issue "Hinge model II" item 3,

@@ -432,6 +432,16 @@ Scene parse_scene(const std::string& text, const std::string& file) {
       *value = r.number(key, 0.0);
       require(**value >= 0, r, key, fmt::format("{} must be >= 0 (a fraction of critical damping; 0: none)", **value));
     }
+    if (r.has("level2_flow_rate_per_s")) {
+      h.level2_flow_rate_per_s = r.number("level2_flow_rate_per_s", 0.0);
+      require(std::isfinite(*h.level2_flow_rate_per_s) && *h.level2_flow_rate_per_s > 0, r, "level2_flow_rate_per_s",
+              fmt::format("{} must be positive and finite (1/s)", *h.level2_flow_rate_per_s));
+    }
+    if (r.has("level2_flow_exponent")) {
+      h.level2_flow_exponent = r.number("level2_flow_exponent", 0.0);
+      require(std::isfinite(*h.level2_flow_exponent) && *h.level2_flow_exponent >= 1, r, "level2_flow_exponent",
+              fmt::format("{} must be finite and >= 1", *h.level2_flow_exponent));
+    }
     h.level3_hinge_f = r.choice<HingeSettings::Level3HingeF>(
         "level3_hinge_f",
         {{"least_onset_load", HingeSettings::Level3HingeF::LeastOnsetLoad},

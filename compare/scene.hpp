@@ -157,6 +157,12 @@ struct HingeSettings {
   // plastic work (README "FE against the hinge model"). Unset: Level2Settings' defaults.
   std::optional<double> membrane_damping_ratio;
   std::optional<double> hinge_damping_ratio;
+  // Level 2 hinge flow law λ̇ = (2 l_h/t) D ⟨|M|/M_y − 1⟩^q (compare/hinge_run_2d.hpp
+  // Level2Settings flow_d_per_s, flow_q): D (1/s, > 0) and q (≥ 1). Unset: the Perzyna
+  // regularisation of the rate-independent hinge (1e4, 1); mild-steel Cowper–Symonds is 40.4, 5.
+  // A larger D is a stiffer regularisation, nearer the FE's rate-independent material.
+  std::optional<double> level2_flow_rate_per_s;
+  std::optional<double> level2_flow_exponent;
   // Level 3 hinge F of the wrap (hinge/level3_mechanism.hpp): fixed where the wrap starts at
   // least load, or travelling by the shear-free condition; level3_theta_f_deg >= 0 fixes it.
   enum class Level3HingeF { LeastOnsetLoad, ShearFree } level3_hinge_f = Level3HingeF::LeastOnsetLoad;

@@ -1,5 +1,6 @@
 // Scene loading: every shipped scene is valid, and each class of bad input is rejected with
 // an error that names the file, the key and the reason.
+#include "compare/hinge_run_2d.hpp"
 #include "compare/scene.hpp"
 #include "minimal_scene.hpp"
 
@@ -195,4 +196,29 @@ TEST(SceneErrors, Level2DampingRatios) {
   const Scene d = parse_scene(base, "ok.toml");
   EXPECT_FALSE(d.hinge.membrane_damping_ratio.has_value());  // Level2Settings' default
   EXPECT_FALSE(d.hinge.hinge_damping_ratio.has_value());
+}
+
+// The Level 2 hinge flow law's D and q (compare/hinge_run_2d.hpp Level2Settings; README "FE
+// against the hinge model", session 15): D > 0 and q >= 1, unset the Perzyna default.
+TEST(SceneErrors, Level2FlowLaw) {
+  for (const char* bad : {"0", "-1e4"})
+    expect_error(base + "\n[hinge]\nlevel2_flow_rate_per_s = " + bad + "\n", "hinge.level2_flow_rate_per_s",
+                 "positive");
+  for (const char* bad : {"0.5", "-2", "0"})
+    expect_error(base + "\n[hinge]\nlevel2_flow_exponent = " + bad + "\n", "hinge.level2_flow_exponent", ">= 1");
+  for (const char* key : {"level2_flow_rate_per_s", "level2_flow_exponent"}) {
+    expect_error(base + "\n[hinge]\n" + key + " = nan\n", std::string("hinge.") + key, "finite");
+    expect_error(base + "\n[hinge]\n" + key + " = \"fast\"\n", std::string("hinge.") + key, "expected a number");
+  }
+  const Scene s = parse_scene(base + "\n[hinge]\nlevel2_flow_rate_per_s = 40.4\nlevel2_flow_exponent = 5\n", "ok.toml");
+  EXPECT_EQ(s.hinge.level2_flow_rate_per_s, 40.4);
+  EXPECT_EQ(s.hinge.level2_flow_exponent, 5.0);
+  const Level2Settings l2 = level2_settings(s, HingeIntegrator::CentralDifference);
+  EXPECT_EQ(l2.flow_d_per_s, 40.4);
+  EXPECT_EQ(l2.flow_q, 5.0);
+  const Scene d = parse_scene(base, "ok.toml");
+  EXPECT_FALSE(d.hinge.level2_flow_rate_per_s.has_value());
+  EXPECT_FALSE(d.hinge.level2_flow_exponent.has_value());
+  EXPECT_EQ(level2_settings(d, HingeIntegrator::Ida).flow_d_per_s, Level2Settings{}.flow_d_per_s);
+  EXPECT_EQ(level2_settings(d, HingeIntegrator::Ida).flow_q, Level2Settings{}.flow_q);
 }
