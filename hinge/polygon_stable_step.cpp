@@ -9,10 +9,13 @@
 // per touching pair, polygon_segment_contact.cpp and polygon_body_contact.cpp). Then
 // ω_i² = K_i/μ_i, ξ_i = C_i/(2√(K_i μ_i)) and dt_i = (2/ω_i)(√(1 + ξ_i²) − ξ_i), the
 // central-difference limit with damping taken at the half-step velocity (Belytschko, Liu &
-// Moran, Nonlinear Finite Elements, §6.3). The Kelvin–Voigt dampers (ζ = 1 of the shortest
-// modes by default, PolygonChainInput) put ξ ≈ 1 into every node and so halve the step —
-// unless the driver applies them implicitly (set_implicit_ring_dampers): then C_i holds the
-// contact and mass damping only, and the Kelvin–Voigt dampers do not shorten the step.
+// Moran, Nonlinear Finite Elements, §6.3). The Kelvin–Voigt dampers (ratios ζ_m, ζ_b of the
+// shortest modes, PolygonChainInput, whose own default is 0; the ringcrush tool's defaults are
+// Level2Settings', compare/hinge_run_2d.hpp: ζ_m = 1 and, since session 14, ζ_b = 0.3) put
+// ξ ≳ 1 into every node, mostly through the membrane bars, and so shorten the step by the
+// factor √(1 + ξ²) − ξ above — unless the driver applies them implicitly
+// (set_implicit_ring_dampers): then C_i holds the contact and mass damping only, and the
+// Kelvin–Voigt dampers do not shorten the step.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -3,7 +3,8 @@
 // stiffness K = −∂φ/∂x (the analytic Jacobian's position columns, exact on an unloaded
 // ring) over the node masses. Without dampers the bound's 2/ω must not exceed 2/ω_max (it is
 // a Gershgorin bound), and it should not be loose by more than 1/0.65 (measured: 0.71 of
-// 2/ω_max free, 0.77 welded; a looser bound wastes explicit steps). With the default Kelvin–Voigt dampers (ζ = 1) the step must
+// 2/ω_max free, 0.77 welded; a looser bound wastes explicit steps). With Kelvin–Voigt dampers
+// at ζ_m = ζ_b = 1 (set below, not the tool's defaults: compare/hinge_run_2d.hpp) the step must
 // shrink by the damping factor √(1 + ξ²) − ξ, ξ ≥ ζ (measured 0.30 of the undamped step).
 #include <gtest/gtest.h>
 
