@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -24,6 +23,7 @@
 #include "fe/element/cps8_force_lanes.hpp"
 #include "fe/contact/penalty_step_cap.hpp"
 #include "fe/dynamics/assembled_eigenvalue.hpp"
+#include "fe/dof_pair.hpp"
 #include "fe/dynamics/explicit_step_end.hpp"
 #include "fe/dynamics/element_eigenvalue.hpp"
 #include "fe/dynamics/lumped_mass.hpp"
@@ -296,16 +296,6 @@ struct ChainModel::Impl {
     }
   }
 
-  // A node's two dofs in the lanes of a 16-byte vector (GCC vector extension: per lane the
-  // scalar IEEE operation, so every sum and difference below is bitwise the scalar one).
-  using Pair = double __attribute__((vector_size(16)));
-  static Pair load_pair(const double* p) {
-    Pair v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
-  static void store_pair(double* p, Pair v) { std::memcpy(p, &v, sizeof v); }
-
   // Element e's increments u − u_n (16, dof order) and, when xe is given, its node
   // coordinates x_n (from x_n, = X + u_n as regeometry() forms them): one pass over its nodes.
   void gather_increment(int e, const Eigen::VectorXd& u, double* du, ElementCoords* xe) const {
@@ -313,7 +303,7 @@ struct ChainModel::Impl {
     const double *pu = u.data(), *pn = u_n.data();
     for (int a = 0; a < 8; ++a) {
       const std::size_t d = 2 * static_cast<std::size_t>(conn[a]);
-      store_pair(du + 2 * a, load_pair(pu + d) - load_pair(pn + d));
+      store_dof_pair(du + 2 * a, load_dof_pair(pu + d) - load_dof_pair(pn + d));
       if (xe) {
         const Eigen::Vector2d& p = x_n[static_cast<std::size_t>(conn[a])];
         (*xe)(a, 0) = p.x();
@@ -328,8 +318,8 @@ struct ChainModel::Impl {
     const auto& conn = topo.mesh.elements[e];
     for (int a = 0; a < 8; ++a) {
       const std::size_t d = 2 * static_cast<std::size_t>(conn[a]);
-      store_pair(force + d, load_pair(force + d) + load_pair(fe.data() + 2 * a));
-      if (viscous) store_pair(viscous + d, load_pair(viscous + d) + load_pair(qe.data() + 2 * a));
+      store_dof_pair(force + d, load_dof_pair(force + d) + load_dof_pair(fe.data() + 2 * a));
+      if (viscous) store_dof_pair(viscous + d, load_dof_pair(viscous + d) + load_dof_pair(qe.data() + 2 * a));
     }
   }
 

@@ -19,7 +19,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cstring>
+
+#include "fe/dof_pair.hpp"
 
 namespace ringcrush::fe {
 
@@ -56,36 +57,28 @@ struct ExplicitStepEnd {
   }
 
  private:
-  // Two dofs at a time in the lanes of a 16-byte vector (GCC vector extension: per lane the
-  // scalar IEEE operations), two such pairs per turn, so that each sum has four partial sums
-  // (one chain of additions per sum would bound the loop by its latency); a and v are per dof
-  // those of the plain pass.
-  using Pair = double __attribute__((vector_size(16)));
-  static Pair load(const double* p) {
-    Pair x;
-    std::memcpy(&x, p, sizeof x);
-    return x;
-  }
-  static void store(double* p, Pair x) { std::memcpy(p, &x, sizeof x); }
-
+  // Two dofs at a time in the lanes of a 16-byte vector (dof_pair.hpp: per lane the scalar
+  // IEEE operations), two such pairs per turn, so that each sum has four partial sums (one
+  // chain of additions per sum would bound the loop by its latency); a and v are per dof those
+  // of the plain pass. A range may start at an odd dof: a pair need not be one node's.
   template <bool Viscous>
   void run(Eigen::Index b, Eigen::Index e, const double* f, const double* q, const double* q_old) {
     // Local copies: the stores below may alias the members as far as the compiler knows.
     const double *inv_m = inv_mass, *m = mass, *f_old = old_force, *inc = increment;
     double *acc = acceleration, *vel = velocity;
-    const Pair h = {half_step, half_step};
-    Pair nf[2] = {}, kin[2] = {}, work[2] = {}, visc[2] = {};
+    const DofPair h = {half_step, half_step};
+    DofPair nf[2] = {}, kin[2] = {}, work[2] = {}, visc[2] = {};
     auto pair = [&](Eigen::Index i, int k) {
-      const Pair fi = load(f + i);
+      const DofPair fi = load_dof_pair(f + i);
       nf[k] += fi - fi;
-      const Pair a = -(load(inv_m + i) * fi);
-      store(acc + i, a);
-      const Pair v = load(vel + i) + h * a;
-      store(vel + i, v);
-      kin[k] += v * v * load(m + i);
-      const Pair du = load(inc + i);
-      work[k] += (load(f_old + i) + fi) * du;
-      if constexpr (Viscous) visc[k] += (load(q_old + i) + load(q + i)) * du;
+      const DofPair a = -(load_dof_pair(inv_m + i) * fi);
+      store_dof_pair(acc + i, a);
+      const DofPair v = load_dof_pair(vel + i) + h * a;
+      store_dof_pair(vel + i, v);
+      kin[k] += v * v * load_dof_pair(m + i);
+      const DofPair du = load_dof_pair(inc + i);
+      work[k] += (load_dof_pair(f_old + i) + fi) * du;
+      if constexpr (Viscous) visc[k] += (load_dof_pair(q_old + i) + load_dof_pair(q + i)) * du;
     };
     Eigen::Index i = b;
     for (; i + 4 <= e; i += 4) {
@@ -105,12 +98,12 @@ struct ExplicitStepEnd {
       tail_work = (old_force[i] + f[i]) * increment[i];
       if constexpr (Viscous) tail_visc = (q_old[i] + q[i]) * increment[i];
     }
-    const Pair snf = nf[0] + nf[1], skin = kin[0] + kin[1], swork = work[0] + work[1];
+    const DofPair snf = nf[0] + nf[1], skin = kin[0] + kin[1], swork = work[0] + work[1];
     not_finite += (snf[0] + snf[1]) + tail_nf;
     mass_v2 += (skin[0] + skin[1]) + tail_kin;
     force_du += (swork[0] + swork[1]) + tail_work;
     if constexpr (Viscous) {
-      const Pair svisc = visc[0] + visc[1];
+      const DofPair svisc = visc[0] + visc[1];
       viscous_du += (svisc[0] + svisc[1]) + tail_visc;
     }
   }
