@@ -115,21 +115,15 @@ template <class V, int Count>
     }
 }
 
-// An element whose coefficient is not positive: its slots zeroed, not skipped. The scratch
-// outlives the call, and an earlier call may have filled them with a positive coefficient (the
-// membrane kick's bars carry c_b + h k_m, a plain damper step at c_b = 0 none); the rows then
-// sum +0 terms, the bits of the element's absence. Not on the default path (c_b, c_θ > 0).
-template <class V, int Count>
-[[gnu::always_inline]] inline void clear_element(double* e, int local) {
-  const V none[Count][2] = {};
-  set_element(e, local, none, 0.0);
-}
-
 // The elements E_0 … E_{N+1} of W rings (node j's x, y at px, py[j W]; n_ind independent
-// nodes; the bar and hinge damper coefficients; an element whose coefficient is not positive
-// zeroed) into `elements` (E_{−2} first); each bar's n/ℓ
+// nodes; the bar and hinge damper coefficients) into `elements` (E_{−2} first); each bar's n/ℓ
 // and e into bars ([nx, ny, ex, ey] of bar k at (4 k) W). Each bar's direction from one
 // division and one square root (bar_direction, whose e the membrane's K_m products take too).
+// Elements whose coefficient is not positive are skipped, so with either coefficient off the
+// elements are cleared first: the scratch outlives the call, and an earlier call may have
+// filled them (the membrane kick's bars carry c_b + h k_m, a plain damper step at c_b = 0
+// none); the rows then sum +0 terms, the bits of a fresh scratch. Out of the element loops, so
+// that the default path (c_b, c_θ > 0) is the same code plus one test.
 template <class V>
 [[gnu::always_inline]] inline void band_elements(const double* px, const double* py, int n_ind, double c_bar,
                                                  double c_hinge, double* elements, double* bars) {
@@ -137,6 +131,7 @@ template <class V>
   constexpr int W = O::W;
   const int last = n_ind - 1;
   auto E = [&](int k) { return elements + kElementSize * (k + kElementPad) * W; };
+  if (!(c_bar > 0 && c_hinge > 0)) std::fill_n(elements, element_values(n_ind) * W, 0.0);
   V ax{}, ay{};  // n/ℓ of the previous bar
   // Hinge 0 (weight ½): bars N−1 (from the mirror of node 1 to node 0) and 0.
   if (c_hinge > 0) {
@@ -146,8 +141,6 @@ template <class V>
     const V a0x = -uy / lu, a0y = ux / lu, bx = -wy / lw, by = wx / lw;
     const V g[2][2] = {{a0x + bx, a0y + by}, {a0x - bx, -a0y - by}};
     set_element(E(0), 0, g, 0.5 * c_hinge);
-  } else {
-    clear_element<V, 2>(E(0), 0);
   }
   // Each bar's e and n/ℓ first, then the elements from them.
   for (int k = 0; k < last; ++k) {
@@ -165,17 +158,11 @@ template <class V>
         set_element(E(1), 1, g, c_bar);
       else
         set_element(E(2 * k), 0, g, c_bar);
-    } else if (k == 0) {
-      clear_element<V, 2>(E(1), 1);
-    } else {
-      clear_element<V, 2>(E(2 * k), 0);
     }
     const V bx = O::load(bars + 4 * k * W), by = O::load(bars + (4 * k + 1) * W);
     if (k > 0 && c_hinge > 0) {  // hinge k on nodes k − 1, k, k + 1
       const V g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
       set_element(E(2 * k + 1), 0, g, c_hinge);
-    } else if (k > 0) {
-      clear_element<V, 3>(E(2 * k + 1), 0);
     }
     ax = bx;
     ay = by;
@@ -187,8 +174,6 @@ template <class V>
     const V bx = -wy / l, by = wx / l;
     const V g[2][2] = {{-ax + bx, -ay - by}, {ax + bx, ay + by}};
     set_element(E(2 * last + 1), 0, g, 0.5 * c_hinge);
-  } else {
-    clear_element<V, 2>(E(2 * last + 1), 0);
   }
 }
 

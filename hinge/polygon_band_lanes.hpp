@@ -28,7 +28,7 @@ std::size_t ring_band_scratch_size(int n_ind);
 
 // One ring (its band entries at band[(6 i + q) S], band at the ring's lane; y at its node 0).
 // `scratch` of ring_band_scratch_size, zero on the first call (slots no element writes must
-// stay 0); reused in any order of coefficients (an element at 0 is zeroed, not skipped).
+// stay 0); reused in any order of coefficients (with one at 0 the elements are cleared first).
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
                         double* scratch, double* bar_e);
 
