@@ -144,7 +144,7 @@ inline constexpr double kImplicitMembraneSafety = 0.9;
 // outside plasticity), the largest |Δ crush| from 0.185 to 0.142 and the mean from 0.039 to
 // 0.024, the crush verdict passes at 11 cases (9), the absorbed energy at 11 (10), the wrap
 // flags miss as often (3 of 66); the balance stays ≤ 1.6e-4 at kImplicitMembraneSafety, and the
-// transition out of alternation moves from 36.3 to 35.6 m/s (FE 34.4). At 0.05 the central
+// transition out of alternation moves from 36.3 to 35.6 m/s (FE 34.6). At 0.05 the central
 // difference diverges (40 m/s, energy limit). IDA keeps 0.3: at rtol 1e-3 its balance passes
 // 1e-3 below it (Test 30 free 1.3e-3 at 0.15; the thesis scene at 15–20 m/s 1.1–1.3e-3 at 0.1).
 inline constexpr double kCentralDifferenceHingeDampingRatio = 0.15;
