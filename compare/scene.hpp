@@ -153,8 +153,10 @@ struct HingeSettings {
   std::optional<bool> level2_implicit_membrane;
   // Level 2 Kelvin–Voigt damping ratios ζ, ≥ 0 (hinge/polygon_chain.hpp PolygonChainInput: the
   // membrane bars and the hinge rotations, each a fraction of its element's critical damping).
-  // They stand in for the FE's wall-bending vibration losses and dissipate what the FE puts into
-  // plastic work (README "FE against the hinge model"). Unset: Level2Settings' defaults.
+  // A numerical device: the FE dissipates ≤ 0.16 % of the impact energy outside plasticity, and
+  // what the dampers take the FE puts into plastic work (README "FE against the hinge model",
+  // sessions 14 and 16). Unset: Level2Settings' defaults, ζ_b on the central difference
+  // kCentralDifferenceHingeDampingRatio (level2_settings).
   std::optional<double> membrane_damping_ratio;
   std::optional<double> hinge_damping_ratio;
   // Level 2 hinge flow law λ̇ = (2 l_h/t) D ⟨|M|/M_y − 1⟩^q (compare/hinge_run_2d.hpp

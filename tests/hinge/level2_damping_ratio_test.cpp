@@ -19,13 +19,18 @@ constexpr HingeIntegrator kIntegrators[] = {HingeIntegrator::Ida, HingeIntegrato
                                             HingeIntegrator::CentralDifference};
 }  // namespace
 
+// ... ζ_b of the central difference its own (kCentralDifferenceHingeDampingRatio, session 16).
 TEST(Level2DampingRatio, UnsetIsTheDefault) {
   const Scene scene = test30_welded();
   for (auto integrator : kIntegrators) {
     const auto in = polygon_input(scene, level2_settings(scene, integrator));
     EXPECT_EQ(in.membrane_damping_ratio, Level2Settings{}.membrane_damping_ratio);
-    EXPECT_EQ(in.hinge_damping_ratio, Level2Settings{}.hinge_damping_ratio);
+    EXPECT_EQ(in.hinge_damping_ratio, integrator == HingeIntegrator::CentralDifference
+                                          ? kCentralDifferenceHingeDampingRatio
+                                          : Level2Settings{}.hinge_damping_ratio);
   }
+  EXPECT_EQ(kCentralDifferenceHingeDampingRatio, 0.15);
+  EXPECT_EQ(Level2Settings{}.hinge_damping_ratio, 0.3);
 }
 
 TEST(Level2DampingRatio, SceneKeysReachTheChainInput) {

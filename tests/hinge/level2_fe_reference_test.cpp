@@ -1,17 +1,24 @@
-// Level 2 against the stored FE reference (data/reference/fe_explicit_velocity.csv: the explicit
-// FE on the thesis scene at 15–50 m/s and on Test 30), issue 7 (d): with the calibrated
-// Kelvin–Voigt ratios (Level2Settings, README "FE against the hinge model") the central
-// difference agrees with the FE at 15 and 45 m/s on the wrap flags, the alternation pattern,
-// the crush per ring and the absorbed (plastic) energy — the verdicts of compare/agreement at
-// their default thresholds. With the former ζ_b = 1 the alternation fails at both speeds and
-// the absorbed energy at 45 m/s (0.78 of the FE's).
+// Level 2 against the stored FE reference with two elements through the wall
+// (data/reference/fe_explicit_48x2.csv: the explicit FE, 48 × 2 CPS8 per half ring, on the
+// thesis scene at 15–50 m/s and on Test 30), issue 7 (d). One CPS8 through the wall misses the
+// plastic moment by its Gauss rule (1.155 or 0.861 M0, README "FE against the hinge model",
+// session 15), so the 48 × 2 file is the reference Level 2 is held to. With its default
+// Kelvin–Voigt ratios (Level2Settings) the central difference agrees with the FE at 15 and
+// 45 m/s on the wrap flags, the alternation pattern, the crush per ring and the absorbed
+// (plastic) energy — the verdicts of compare/agreement at their default thresholds. At the
+// former ζ_b = 0.3 the 45 m/s case failed the crush (rings 3 and 5, 0.18) and the alternation
+// (the signs of the crush steps; neither chain alternates): the hinge dampers took 13 % of the
+// kinetic energy there, the FE dissipates 0.1 % outside plasticity (session 16, h62).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compare/agreement.hpp"
@@ -25,14 +32,18 @@ namespace {
 
 const std::string source_dir = RINGCRUSH_SOURCE_DIR;
 
-// One row of the reference as the FE RunResult the agreement reads: final crush per ring,
-// wrap flags and the plastic work.
-std::map<std::string, RunResult> load_reference() {
-  std::ifstream in(source_dir + "/data/reference/fe_explicit_velocity.csv");
+struct ReferenceRow {
+  RunResult fe;      // final crush per ring, wrap flags and plastic work, as the agreement reads them
+  double velocity_m_s = 0.0;
+  bool thesis_scene = false;
+};
+
+std::map<std::string, ReferenceRow> load_reference() {
+  std::ifstream in(source_dir + "/data/reference/fe_explicit_48x2.csv");
   if (!in) throw std::runtime_error("cannot open the FE reference");
   std::string line;
   std::vector<std::string> header;
-  std::map<std::string, RunResult> rows;
+  std::map<std::string, ReferenceRow> rows;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     std::vector<std::string> cells;
@@ -44,15 +55,17 @@ std::map<std::string, RunResult> load_reference() {
     }
     std::map<std::string, std::string> row;
     for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
-    RunResult fe;
-    fe.model = "fe";
-    fe.analysis = AnalysisType::Dynamic;
+    ReferenceRow r;
+    r.fe.model = "fe";
+    r.fe.analysis = AnalysisType::Dynamic;
     for (int ring = 1; ring <= 6; ++ring) {
-      fe.crush_ratio.push_back(std::stod(row.at("crush_" + std::to_string(ring))));
-      fe.wrap_around.push_back(row.at("wrap_" + std::to_string(ring)) == "1");
+      r.fe.crush_ratio.push_back(std::stod(row.at("crush_" + std::to_string(ring))));
+      r.fe.wrap_around.push_back(row.at("wrap_" + std::to_string(ring)) == "1");
     }
-    fe.plastic_j = {std::stod(row.at("plastic_J"))};
-    rows[row.at("case")] = fe;
+    r.fe.plastic_j = {std::stod(row.at("plastic_J"))};
+    r.velocity_m_s = std::stod(row.at("velocity_m_s"));
+    r.thesis_scene = row.at("base_scene") == "thesis_dynamic";
+    rows[row.at("case")] = r;
   }
   return rows;
 }
@@ -89,29 +102,71 @@ void expect_agreement(const RunResult& fe, const Level2Case& hinge, double crush
   EXPECT_LT(hinge.energy_balance_error, 1e-3);
 }
 
+// The speed at which the alternation index first falls through the threshold going up in
+// speed, by linear interpolation between neighbouring speeds (data/sweeps/level2_damping/
+// transition.py); empty when it does not.
+std::optional<double> transition_speed(const std::vector<std::pair<double, double>>& speed_index) {
+  for (std::size_t i = 0; i + 1 < speed_index.size(); ++i) {
+    const auto [v0, a0] = speed_index[i];
+    const auto [v1, a1] = speed_index[i + 1];
+    if (a0 > alternation_threshold && a1 <= alternation_threshold)
+      return v0 + (v1 - v0) * (a0 - alternation_threshold) / (a0 - a1);
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 TEST(Level2FeReference, ThesisSceneAt15MetresPerSecond) {
   const auto reference = load_reference();
-  expect_agreement(reference.at("thesis_v15"), run_thesis_scene(15.0), 0.10);
+  expect_agreement(reference.at("thesis_v15").fe, run_thesis_scene(15.0), 0.10);
 }
 
 TEST(Level2FeReference, ThesisSceneAt45MetresPerSecond) {
   const auto reference = load_reference();
-  expect_agreement(reference.at("thesis_v45"), run_thesis_scene(45.0), 0.10);
+  expect_agreement(reference.at("thesis_v45").fe, run_thesis_scene(45.0), 0.10);
 }
 
-// The reference itself: the FE's own verdict-level facts the calibration leans on (thesis
-// §4.2): no wrap at 15 m/s, rings 1–5 wrapped from 35 m/s on, the alternation index above the
-// threshold at 20–30 m/s and below it from 40 m/s.
+// Issue 7 (d) at the transition: the FE's chain stops alternating at 34.6 m/s (its index 0.54
+// at 32.5, 0.26 at 35 m/s, interpolated), Level 2's at 35.6 m/s (0.51 at 34, 0.40 at 35, 0.25
+// at 36 m/s): 1.0 m/s later, within the FE's 2.5 m/s sampling. At the former ζ_b = 0.3 it was
+// 1.6 m/s later (36.3 m/s), and this test fails there. Level 2 is run from 34 m/s up until its
+// index falls through the threshold (3 runs).
+TEST(Level2FeReference, AlternationStopsWithinOneAndAHalfMetresPerSecondOfTheFe) {
+  const auto reference = load_reference();
+  std::vector<std::pair<double, double>> fe;
+  for (const auto& [name, row] : reference)
+    if (row.thesis_scene) fe.emplace_back(row.velocity_m_s, alternation(row.fe.crush_ratio).index);
+  std::sort(fe.begin(), fe.end());
+  const auto fe_speed = transition_speed(fe);
+  ASSERT_TRUE(fe_speed.has_value());
+  EXPECT_GT(*fe_speed, 30.0);
+  EXPECT_LT(*fe_speed, 35.0);
+
+  std::vector<std::pair<double, double>> level2;
+  for (double v = 34.0; v <= 40.0; v += 1.0) {
+    level2.emplace_back(v, alternation(run_thesis_scene(v).result.crush_ratio).index);
+    if (level2.back().second <= alternation_threshold) break;
+  }
+  ASSERT_GT(level2.front().second, alternation_threshold) << "Level 2 no longer alternates at 34 m/s";
+  const auto level2_speed = transition_speed(level2);
+  ASSERT_TRUE(level2_speed.has_value()) << "Level 2 still alternates at 40 m/s";
+  EXPECT_NEAR(*level2_speed, *fe_speed, 1.5) << "Level 2 " << *level2_speed << " m/s, FE " << *fe_speed << " m/s";
+}
+
+// The reference itself: the FE's own verdict-level facts the comparison leans on (thesis §4.2):
+// no wrap at 15 m/s, rings 1–4 wrapped from 35 m/s on and ring 5 from 37.5 m/s on, the
+// alternation index above the threshold at 20–32.5 m/s and below it from 35 m/s.
 TEST(Level2FeReference, ReferenceCarriesTheThesisVelocityTrend) {
   const auto reference = load_reference();
-  ASSERT_EQ(reference.size(), 11u);
-  for (bool w : reference.at("thesis_v15").wrap_around) EXPECT_FALSE(w);
-  for (const char* c : {"thesis_v35", "thesis_v40", "thesis_v45", "thesis_v50"})
-    for (int ring = 0; ring < 5; ++ring) EXPECT_TRUE(reference.at(c).wrap_around[ring]) << c << " ring " << ring + 1;
-  for (const char* c : {"thesis_v20", "thesis_v25", "thesis_v30"})
-    EXPECT_GT(alternation(reference.at(c).crush_ratio).index, alternation_threshold) << c;
-  for (const char* c : {"thesis_v40", "thesis_v45", "thesis_v50"})
-    EXPECT_LT(alternation(reference.at(c).crush_ratio).index, alternation_threshold) << c;
+  ASSERT_EQ(reference.size(), 13u);
+  for (bool w : reference.at("thesis_v15").fe.wrap_around) EXPECT_FALSE(w);
+  for (const char* c : {"thesis_v35", "thesis_v37.5", "thesis_v40", "thesis_v45", "thesis_v50"})
+    for (int ring = 0; ring < 4; ++ring) EXPECT_TRUE(reference.at(c).fe.wrap_around[ring]) << c << " ring " << ring + 1;
+  for (const char* c : {"thesis_v37.5", "thesis_v40", "thesis_v45", "thesis_v50"})
+    EXPECT_TRUE(reference.at(c).fe.wrap_around[4]) << c << " ring 5";
+  for (const char* c : {"thesis_v20", "thesis_v25", "thesis_v30", "thesis_v32.5"})
+    EXPECT_GT(alternation(reference.at(c).fe.crush_ratio).index, alternation_threshold) << c;
+  for (const char* c : {"thesis_v35", "thesis_v37.5", "thesis_v40", "thesis_v45", "thesis_v50"})
+    EXPECT_LT(alternation(reference.at(c).fe.crush_ratio).index, alternation_threshold) << c;
 }
