@@ -1,19 +1,62 @@
 // The fully plastic moment of the FE section through the wall, relative to M0 = σ0 t²/4
 // (fe/element/through_wall_plastic_moment.hpp): the closed forms of each Gauss rule, the even
-// counts that are exact, an odd count by hand, and the selective rule's points across the wall
-// read from the element itself.
+// counts that are exact, an odd count by hand, the selective rule's points across the wall
+// read from the element itself, and the section moment the CPS8 elements carry in bending
+// against the rule sum.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <vector>
 #include <stdexcept>
 
 #include "fe/element/cps8_element.hpp"
 #include "fe/element/cps8_rule_tables.hpp"
 #include "fe/element/through_wall_plastic_moment.hpp"
+#include "fe/material/j2_plane_stress.hpp"
 
 using namespace ringcrush::fe;
 
 namespace {
+
+// The moment the CPS8 elements themselves carry across a straight wall of depth t, n elements
+// through it, in a bending field u_x = κ x y, u_y = −κ x²/2 (ε_xx = κ y, ε_yy = γ = 0) far past
+// yield: the work conjugate of κ, Σ_a f_a · ∂u_a/∂κ = Σ_points w σ_xx ∂E_xx/∂κ, which is the
+// Gauss sum of σ_xx y over the section (per unit length of wall). Perfectly plastic material
+// with a tiny yield strain (σ0/E = 1e-6), so that every point off the mid-surface is fully
+// plastic (the innermost at 34 yield strains) while the geometry stays linear (outer fibre
+// strain 0.03 %).
+double element_section_moment(int through, Integration rule) {
+  MaterialInput m;
+  m.youngs_modulus_pa = 200e9;
+  m.poisson_ratio = 0.3;
+  m.hardening = {{0.2e6, 0.0}};
+  const J2PlaneStress material(m);
+  const double t = 1.6e-3, length = 2e-3, kappa = 2 * 3e-4 / t;
+  double work = 0;
+  for (int k = 0; k < through; ++k) {
+    ElementCoords x;
+    double du[16];
+    for (int a = 0; a < 8; ++a) {
+      const double xa = 0.5 * length * cps8_node_coords[a][0];
+      const double ya = -0.5 * t + (k + 0.5 + 0.5 * cps8_node_coords[a][1]) * t / through;
+      x(a, 0) = xa;
+      x(a, 1) = ya;
+      du[2 * a] = kappa * xa * ya;
+      du[2 * a + 1] = -0.5 * kappa * xa * xa;
+    }
+    const Cps8Geometry geo = cps8_geometry(x, rule, 1.0);
+    std::vector<PointState> committed(9), trial(9);
+    Cps8Output out;
+    cps8_evaluate(geo, du, committed.data(), trial.data(), material, true, out);
+    for (int a = 0; a < 8; ++a) {
+      const double xa = x(a, 0), ya = x(a, 1);
+      work += out.force(2 * a) * xa * ya - out.force(2 * a + 1) * 0.5 * xa * xa;
+    }
+  }
+  return work / length;
+}
+
 const double two_point = 2 / std::sqrt(3.0);                    // 2 · 1 · (1/√3)
 const double three_point = 2 * (5.0 / 9.0) * std::sqrt(0.6);    // 2 · (5/9) · √0.6; the middle point has no arm
 }  // namespace
@@ -83,5 +126,24 @@ TEST(ThroughWallPlasticMoment, PointsAcrossTheWallAreTheElementsOwn) {
     EXPECT_NEAR(h, stress_points[i].h, 1e-15) << i;
     EXPECT_NEAR(g, stress_points[i].g, 1e-15) << i;
     EXPECT_NEAR(sum, 1.0, 1e-15) << i;
+  }
+}
+
+// The elements carry the factor the rule sum predicts: with one element through the wall the
+// section moment is the rule's factor times the two-element one (which is exact), for reduced,
+// full and selective alike — so the selective rule's 2×2 volumetric part does not change the
+// 3-point moment arms; three elements carry their middle-element correction too.
+TEST(ThroughWallPlasticMoment, TheElementsCarryTheFactor) {
+  for (Integration rule : {Integration::Reduced, Integration::Full, Integration::Selective}) {
+    const double exact = element_section_moment(2, rule);
+    const double factor = through_wall_plastic_moment(1, rule);
+    std::printf("%s: M(1)/M(2) = %.5f (sum %.5f), M(3)/M(2) = %.5f (sum %.5f), M(4)/M(2) = %.6f\n",
+                rule == Integration::Reduced ? "reduced" : rule == Integration::Full ? "full" : "selective",
+                element_section_moment(1, rule) / exact, factor,
+                element_section_moment(3, rule) / exact, through_wall_plastic_moment(3, rule),
+                element_section_moment(4, rule) / exact);
+    EXPECT_NEAR(element_section_moment(1, rule) / exact, factor, 2e-4);  // measured within 2e-5
+    EXPECT_NEAR(element_section_moment(3, rule) / exact, through_wall_plastic_moment(3, rule), 2e-4);
+    EXPECT_NEAR(element_section_moment(4, rule) / exact, 1.0, 2e-4);
   }
 }
