@@ -4,6 +4,7 @@
 
 #include "compare/fe_dynamic.hpp"
 #include "compare/fe_static.hpp"
+#include "compare/through_wall_section.hpp"
 
 namespace ringcrush::compare {
 namespace {
@@ -42,6 +43,7 @@ std::vector<std::string> explain_fe(const Scene& s) {
     e.push_back(fmt::format("{} model: {} CPS8 around x {} through, {} (analysis.symmetry = \"{}\")",
                             half ? "half-ring" : "full-ring", (half ? 1 : 2) * in.mesh.elements_around,
                             in.mesh.elements_through, rule_name(s.fe.integration), half ? "half" : "full"));
+    e.push_back(through_wall_section_line(s));
     e.push_back("no mass matrix and no inertia: a static run assembles none");
     e.push_back("tangent stiffness and a sparse LDLT factorisation every Newton iteration; the pattern is analysed "
                 "once and only again when contact couples new nodes");
@@ -60,6 +62,7 @@ std::vector<std::string> explain_fe(const Scene& s) {
                           (half ? 1 : 2) * chain.mesh.elements_around * chain.mesh.elements_through,
                           (half ? 1 : 2) * chain.mesh.elements_around, chain.mesh.elements_through,
                           rule_name(s.fe.integration), half ? "half" : "full"));
+  e.push_back(through_wall_section_line(s));
   if (solver.scheme == fe::DynamicScheme::Explicit)
     e.push_back(fmt::format("explicit central difference: HRZ lumped mass, no tangent and no factorisation; the step "
                             "is {:g} x {} (fe.solver = \"explicit\", fe.step_bound = \"{}\")",

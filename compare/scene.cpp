@@ -13,6 +13,8 @@
 #include <utility>
 #include <toml++/toml.h>
 
+#include "compare/through_wall_section.hpp"
+
 namespace ringcrush::compare {
 
 SceneError::SceneError(std::string file, std::string key, std::string reason)
@@ -486,7 +488,9 @@ Scene load_scene(const std::filesystem::path& file) {
   if (!in) throw SceneError(file.string(), "", "cannot open the file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_scene(text.str(), file.string());
+  Scene s = parse_scene(text.str(), file.string());
+  warn_through_wall_once(s);  // a chain whose FE section misses M0 (through_wall_section.hpp)
+  return s;
 }
 
 }  // namespace ringcrush::compare

@@ -3,6 +3,7 @@
 //
 //   ringcrush bench-fe-dynamic -o results/bench_fe_dynamic            # thesis scene, both drivers
 //   ringcrush bench-fe-dynamic --matrix --elements-around 16 --jobs 2 -o results/matrix
+//   ringcrush bench-fe-dynamic --matrix --elements-through 2 --no-thesis -o results/matrix_x2
 //   ringcrush bench-fe-dynamic --matrix --filter 'explicit/welded/v30/' -o results/m30
 //   ringcrush bench-fe-dynamic --matrix --no-thesis --step-bound assembled --safety 0.9 -o DIR
 //
@@ -21,6 +22,9 @@
 // --step-bound / --safety set the explicit step of every run (both parts) in place of the
 // scenes' fe.step_bound / fe.explicit_safety, so the matrix can be run at another setting
 // (the session-12 choice of the defaults, README "FE dynamics"); HHT runs ignore them.
+// --elements-through N: elements through the wall of every run. The matrix keeps 1 without it
+// — the mesh it was recorded on in issue 4 (16 × 1) — although its base scenes now carry 2
+// (through_wall_section.hpp); part (i) keeps the scene's.
 // --quick shrinks both parts to two rings on a coarse mesh and a short time (the test suite).
 #include <fmt/format.h>
 
@@ -50,6 +54,8 @@ struct BenchOptions {
   bool matrix = false;
   bool thesis = true;
   int elements_around = 0;  // 0: the scene's (thesis part) / 16 (matrix)
+  int elements_through = 0;  // with elements_through_given; else the scene's (thesis part) / 1 (matrix)
+  bool elements_through_given = false;
   std::string filter;       // matrix: regex on the case name
   int jobs = 1;
   double end_time_s = 0;    // > 0: overrides the scenes' end time
@@ -98,12 +104,15 @@ Scene quick_scene(Scene s) {
   return s;
 }
 
-Scene prepared(Scene s, const BenchOptions& o, int default_elements) {
+// default_elements, default_through: the part's own mesh when no flag sets it (0: the scene's).
+Scene prepared(Scene s, const BenchOptions& o, int default_elements, int default_through) {
   s.outputs.fields = false;
   s.outputs.frames = 0;
   if (o.quick) s = quick_scene(s);
   else if (o.elements_around > 0) s.fe.elements_around = o.elements_around;
   else if (default_elements > 0) s.fe.elements_around = default_elements;
+  if (o.elements_through_given) s.fe.elements_through = o.elements_through;
+  else if (default_through > 0) s.fe.elements_through = default_through;
   if (o.end_time_s > 0) s.analysis.end_time_s = o.end_time_s;
   if (o.step_bound == "element") s.fe.step_bound = ExplicitStepBound::Element;
   if (o.step_bound == "assembled") s.fe.step_bound = ExplicitStepBound::Assembled;
@@ -114,10 +123,10 @@ Scene prepared(Scene s, const BenchOptions& o, int default_elements) {
 // ---- (i) the thesis scene with both drivers -------------------------------------------
 
 void thesis_part(const BenchOptions& o, ResultsDir& out) {
-  const Scene base = prepared(load_scene(o.scene), o, 0);
+  const Scene base = prepared(load_scene(o.scene), o, 0, 0);
   std::vector<CaseOutcome> runs;
-  fmt::print("bench-fe-dynamic: {} ({} rings, {} elements around per half ring, end {:g} ms)\n", base.name,
-             base.rings.count, base.fe.elements_around, 1e3 * base.analysis.end_time_s);
+  fmt::print("bench-fe-dynamic: {} ({} rings, {} x {} elements per half ring, end {:g} ms)\n", base.name,
+             base.rings.count, base.fe.elements_around, base.fe.elements_through, 1e3 * base.analysis.end_time_s);
   fmt::print("{:>9} {:>8} {:>8} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>7}  {}\n", "run", "steps", "rejected",
              "newton", "wall_s", "ns/el-step", "contact", "E_err_%", "E_num_%", "altern", "end");
   std::ofstream csv(out.file("thesis.csv"));
@@ -214,7 +223,7 @@ std::vector<MatrixCase> matrix_cases(const BenchOptions& o) {
   for (FeSolver solver : {FeSolver::Explicit, FeSolver::Hht})
     for (const char* joints : {"welded", "free", "plates"}) {
       const auto file = std::filesystem::path(o.scene).parent_path() / fmt::format("test30_{}.toml", joints);
-      const Scene base = prepared(load_scene(file), o, 16);
+      const Scene base = prepared(load_scene(file), o, 16, 1);
       for (double v : speeds)
         for (double m : masses)
           for (double td : t_over_d) {
@@ -235,6 +244,9 @@ std::vector<MatrixCase> matrix_cases(const BenchOptions& o) {
 void matrix_part(const BenchOptions& o, ResultsDir& out) {
   const auto cases = matrix_cases(o);
   fmt::print("\nstability matrix: {} cases on {} thread(s)", cases.size(), o.jobs);
+  if (!cases.empty())
+    fmt::print(", {} x {} elements per half ring", cases.front().scene.fe.elements_around,
+               cases.front().scene.fe.elements_through);
   if (!cases.empty())
     fmt::print(", explicit step: {} bound, safety {:g}",
                cases.front().scene.fe.step_bound == ExplicitStepBound::Assembled ? "assembled" : "element",
@@ -311,6 +323,10 @@ void run_bench(const BenchOptions& o) {
   if (o.output.empty()) throw std::invalid_argument("bench-fe-dynamic: -o DIR is required");
   if (o.safety_given && !(o.safety > 0 && o.safety <= 1))
     throw std::invalid_argument(fmt::format("bench-fe-dynamic: --safety {} must lie in (0, 1]", o.safety));
+  if (o.elements_through_given && !(o.elements_through >= 1 && o.elements_through <= 16))
+    throw std::invalid_argument(
+        fmt::format("bench-fe-dynamic: --elements-through {} must lie in [1, 16] (the scene's fe.elements_through range)",
+                    o.elements_through));
   if (o.elements_around % 2 != 0)
     throw std::invalid_argument(fmt::format("bench-fe-dynamic: --elements-around {} must be even", o.elements_around));
   ResultsDir out(o.output);
@@ -333,6 +349,9 @@ void add_command(CLI::App& app) {
   cmd->add_option("--elements-around", o->elements_around,
                   "Elements per half ring (default: the scene's for part (i), 16 for the matrix)")
       ->check(CLI::Range(8, 4096));
+  auto* through = cmd->add_option(
+      "--elements-through", o->elements_through,
+      "Elements through the wall of every run (default: the scene's for part (i), 1 for the matrix, its recorded mesh)");
   cmd->add_option("--filter", o->filter, "Matrix: only cases whose name (driver/joints/vV/mM/tDX) matches");
   cmd->add_option("--jobs", o->jobs, "Matrix: cases run in parallel")->check(CLI::Range(1, 64));
   cmd->add_option("--end-time", o->end_time_s, "Override the end time of every run (s)")->check(CLI::PositiveNumber);
@@ -343,8 +362,9 @@ void add_command(CLI::App& app) {
   auto* safety = cmd->add_option("--safety", o->safety,
                                  "Explicit runs: fraction of the stable step, in (0, 1] (overrides the scenes' "
                                  "fe.explicit_safety)");
-  cmd->callback([o, safety] {
+  cmd->callback([o, safety, through] {
     o->safety_given = safety->count() > 0;
+    o->elements_through_given = through->count() > 0;
     run_bench(*o);
   });
 }

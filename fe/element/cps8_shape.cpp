@@ -29,20 +29,17 @@ void cps8_shape(double g, double h, ShapeVec& n, ShapeGrad& dn) {
   }
 }
 
+std::vector<GaussPoint1d> gauss_rule_1d(int n) {
+  if (n == 2) return {{-1 / std::sqrt(3.0), 1}, {1 / std::sqrt(3.0), 1}};
+  if (n == 3) return {{-std::sqrt(0.6), 5.0 / 9}, {0, 8.0 / 9}, {std::sqrt(0.6), 5.0 / 9}};
+  throw std::invalid_argument("gauss_rule: n must be 2 or 3");
+}
+
 std::vector<GaussPoint> gauss_rule(int n) {
-  std::vector<double> x, w;
-  if (n == 2) {
-    x = {-1 / std::sqrt(3.0), 1 / std::sqrt(3.0)};
-    w = {1, 1};
-  } else if (n == 3) {
-    x = {-std::sqrt(0.6), 0, std::sqrt(0.6)};
-    w = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  } else {
-    throw std::invalid_argument("gauss_rule: n must be 2 or 3");
-  }
+  const auto p = gauss_rule_1d(n);
   std::vector<GaussPoint> r;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) r.push_back({x[i], x[j], w[i] * w[j]});
+  for (const auto& b : p)
+    for (const auto& a : p) r.push_back({a.x, b.x, a.weight * b.weight});
   return r;
 }
 

@@ -25,4 +25,10 @@ struct GaussPoint {
 // n×n Gauss–Legendre rule on [−1, 1]², n = 2 or 3.
 std::vector<GaussPoint> gauss_rule(int n);
 
+struct GaussPoint1d {
+  double x, weight;
+};
+// The n-point Gauss–Legendre rule on [−1, 1] that gauss_rule(n) is the tensor product of.
+std::vector<GaussPoint1d> gauss_rule_1d(int n);
+
 }  // namespace ringcrush::fe

@@ -114,6 +114,22 @@ TEST(Cli, ValidateAcceptsEveryShippedScene) {
   EXPECT_NE(r.output.find("test30_welded.toml: ok"), std::string::npos);
 }
 
+// Scene loading warns (stderr, once, exit status unchanged) on a chain whose FE section misses
+// M0 by its Gauss rule (compare/through_wall_section.hpp): the thesis scene, on the thesis's
+// mesh; not the Table 2 chains, which carry two elements through the wall.
+TEST(Cli, ValidateWarnsOnAChainWhoseFeMissesThePlasticMoment) {
+  const CommandRun thesis = ringcrush("validate " + scenes + "thesis_dynamic.toml " + scenes + "thesis_dynamic.toml");
+  EXPECT_EQ(thesis.status, 0) << thesis.output;
+  const auto first = thesis.output.find("warning: ");
+  ASSERT_NE(first, std::string::npos) << thesis.output;
+  EXPECT_EQ(thesis.output.find("warning: ", first + 1), std::string::npos) << thesis.output;  // once per run
+  EXPECT_NE(thesis.output.find("0.861 M0"), std::string::npos) << thesis.output;
+  EXPECT_NE(thesis.output.find("the thesis's mesh"), std::string::npos) << thesis.output;
+  const CommandRun welded = ringcrush("validate " + scenes + "test30_welded.toml");
+  EXPECT_EQ(welded.status, 0) << welded.output;
+  EXPECT_EQ(welded.output.find("warning"), std::string::npos) << welded.output;
+}
+
 TEST(Cli, BenchHinge2StiffTermScalesOutOfRangeAreNamedErrors) {
   for (const char* flag : {"--membrane-scale", "--penalty-scale"})
     for (const char* bad : {"0", "1.5", "-0.25"}) {

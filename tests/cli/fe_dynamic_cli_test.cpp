@@ -175,6 +175,32 @@ TEST(FeDynamicCli, BenchStepBoundAndSafetyReachTheMatrix) {
   EXPECT_FALSE(std::regex_search(matrix, std::regex("\\bnan\\b", std::regex::icase))) << matrix;
 }
 
+// --elements-through reaches every matrix run; without it the matrix keeps the mesh it was
+// recorded on (one element through), although its base scenes (test30_*) now carry two.
+TEST(FeDynamicCli, BenchElementsThroughReachesTheMatrix) {
+  const fs::path dir = scratch("bench_through");
+  const std::string args = "bench-fe-dynamic --quick --no-thesis --filter 'explicit/welded/' " +
+                           std::string(RINGCRUSH_SOURCE_DIR) + "/data/scenes/thesis_dynamic.toml -o ";
+  const auto two = ringcrush(args + (dir / "two").string() + " --elements-through 2");
+  ASSERT_EQ(two.status, 0) << two.output;
+  EXPECT_NE(two.output.find("1 cases on 1 thread(s), 8 x 2 elements per half ring"), std::string::npos) << two.output;
+  EXPECT_EQ(data_rows(dir / "two" / "matrix.csv"), 1u);
+  const auto recorded = ringcrush(args + (dir / "one").string());
+  ASSERT_EQ(recorded.status, 0) << recorded.output;
+  EXPECT_NE(recorded.output.find("8 x 1 elements per half ring"), std::string::npos) << recorded.output;
+  // Half the element depth through the wall: the explicit step shrinks, the step count grows.
+  auto steps = [](const fs::path& csv) {
+    std::istringstream rows(read_text(csv));
+    std::string header, row, cell;
+    std::getline(rows, header);
+    std::getline(rows, row);
+    std::istringstream cells(row);
+    for (int column = 0; column <= 8; ++column) std::getline(cells, cell, ',');  // case, …, steps
+    return std::stod(cell);
+  };
+  EXPECT_GT(steps(dir / "two" / "matrix.csv"), 1.3 * steps(dir / "one" / "matrix.csv"));
+}
+
 // Bad values are named and exit 2 before any run.
 TEST(FeDynamicCli, BenchBadStepSettingsExitTwo) {
   const fs::path dir = scratch("bench_bad");
@@ -184,6 +210,11 @@ TEST(FeDynamicCli, BenchBadStepSettingsExitTwo) {
     const auto r = ringcrush(std::string("bench-fe-dynamic ") + bad + tail);
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--safety"), std::string::npos) << bad << ": " << r.output;
+  }
+  for (const char* bad : {"--elements-through 0", "--elements-through -1", "--elements-through 17"}) {
+    const auto r = ringcrush(std::string("bench-fe-dynamic ") + bad + tail);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--elements-through"), std::string::npos) << bad << ": " << r.output;
   }
   const auto bound = ringcrush("bench-fe-dynamic --step-bound exact" + tail);
   EXPECT_EQ(bound.status, 2) << bound.output;
