@@ -108,10 +108,15 @@ Agreement assess_agreement(const RunResult& fe, const RunResult& hinge, const Ag
     v.description = "same alternation pattern (index vs threshold, signs of crush steps)";
     v.value = pairs > 0 ? static_cast<double>(same) / pairs : 1.0;
     v.threshold = t.pattern_fraction;
-    v.pass = alt_f == alt_h && v.value >= t.pattern_fraction;
-    v.detail = fmt::format("index FE {:.2f} ({}), hinge {:.2f} ({}), threshold {:.2f}; steps FE {} hinge {}",
+    // The step signs decide only when both chains alternate: they say whether the two alternate
+    // in phase (the same rings crushed). When neither does, the crush profile is flat and its
+    // steps sit at the level cut (THEORY §4.7: an index on a flat distribution means little);
+    // the profile is then held by the crush verdict, and the signs are shown without deciding.
+    const bool signs_decide = alt_f && alt_h;
+    v.pass = alt_f == alt_h && (!signs_decide || v.value >= t.pattern_fraction);
+    v.detail = fmt::format("index FE {:.2f} ({}), hinge {:.2f} ({}), threshold {:.2f}; steps FE {} hinge {}{}",
                            af.index, alt_f ? "alternates" : "does not", ah.index, alt_h ? "alternates" : "does not",
-                           alternation_threshold, pf, ph);
+                           alternation_threshold, pf, ph, signs_decide || alt_f != alt_h ? "" : " (neither alternates: the steps do not decide)");
     a.verdicts.push_back(v);
   }
   {

@@ -6,9 +6,11 @@
 // Verdicts (all must pass for "agree"):
 //  - wrap_rings:   the same rings wrap around their neighbour (flags of rings 1..N−1);
 //  - alternation:  both chains alternate or neither does (index vs alternation_threshold),
-//                  and the signs of the neighbour crush differences agree on at least
-//                  `pattern_fraction` of the pairs (differences below `level_tolerance` in
-//                  crush ratio count as level);
+//                  and, when both alternate, the signs of the neighbour crush differences
+//                  agree on at least `pattern_fraction` of the pairs (differences below
+//                  `level_tolerance` in crush ratio count as level): the phase of the
+//                  alternation. When neither alternates the signs are shown, not decisive;
+//
 //  - crush:        largest |c_FE − c_hinge| over the rings;
 //  - peak_force (of the force averaged over a 0.2 ms window: run_output peak_mean_force),
 //    mean_force, absorbed_energy: relative errors against the FE.

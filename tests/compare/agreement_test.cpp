@@ -88,6 +88,37 @@ TEST(Agreement, AlternatingAgainstMonotoneFails) {
   EXPECT_NEAR(a.hinge_alternation_index, 0.0, 1e-12);
 }
 
+// Both alternate, out of phase (the even rings crushed in one, the odd in the other): the
+// step signs decide, and every one differs.
+TEST(Agreement, AlternationOutOfPhaseFails) {
+  const std::vector<double> shifted{0.3, 0.9, 0.35, 0.85, 0.4, 0.8};
+  bool pass = true;
+  const Agreement a = assess_agreement(synthetic(alternating, wraps_135), synthetic(shifted, wraps_135));
+  EXPECT_DOUBLE_EQ(verdict(a, "alternation", &pass), 0.0);
+  EXPECT_FALSE(pass);
+  EXPECT_GT(a.hinge_alternation_index, alternation_threshold);
+}
+
+// Neither alternates (the plated Test 30 chain, session 16: FE steps 0-000, hinge 0-0++): the
+// flat profile's steps sit at the 0.05 level cut, so their signs are shown and do not decide;
+// the crush verdict holds the profile. The same steps between two alternating chains fail.
+TEST(Agreement, StepSignsDoNotDecideWhenNeitherAlternates) {
+  const std::vector<double> fe_flat{0.72, 0.72, 0.66, 0.66, 0.70, 0.71};
+  const std::vector<double> hinge_flat{0.67, 0.68, 0.62, 0.63, 0.68, 0.74};
+  const std::vector<bool> none(6, false);
+  bool pass = false;
+  const Agreement a = assess_agreement(synthetic(fe_flat, none), synthetic(hinge_flat, none));
+  EXPECT_LT(a.fe_alternation_index, alternation_threshold);
+  EXPECT_LT(a.hinge_alternation_index, alternation_threshold);
+  EXPECT_LT(verdict(a, "alternation", &pass), 0.75);  // the signs differ on 2 of 5 steps
+  EXPECT_TRUE(pass);
+  for (const auto& v : a.verdicts) {
+    if (v.key == "alternation") {
+      EXPECT_NE(v.detail.find("neither alternates"), std::string::npos) << v.detail;
+    }
+  }
+}
+
 TEST(Agreement, CrushErrorAgainstThreshold) {
   auto shifted = alternating;
   shifted[3] += 0.14;  // below the 0.15 default

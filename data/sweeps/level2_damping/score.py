@@ -1,12 +1,17 @@
 #!/usr/bin/env python3
 """Scores Level 2 sweep cases against the FE reference (h53, issue 7 (d)).
-usage: score.py REFERENCE.csv LABEL=SWEEP_DIR ... [--per-scene ZB,ZM]
+usage: score.py REFERENCE.csv LABEL=SWEEP_DIR ... [--per-scene ZB,ZM] [--signs-always]
+Alternation as compare/agreement.cpp (session 16): both alternate or neither (index 0.3), and the
+crush-step signs (level below 0.05) agree on >= 75 % of the steps when both alternate;
+--signs-always applies the sign rule to every case, as the tables of sessions 14-15 did.
 LABEL: thesis (cases matched to the reference by speed) or test30_welded / test30_free / test30_plates."""
 import csv, json, os, sys, tomllib, statistics as st
 from collections import defaultdict
 
 ref_file, *args = sys.argv[1:]
 per_scene = None
+signs_always = "--signs-always" in args
+if signs_always: args.remove("--signs-always")
 if "--per-scene" in args:
     i = args.index("--per-scene"); per_scene = tuple(float(x) for x in args[i + 1].split(",")); del args[i:i + 2]
 ref = {}
@@ -35,7 +40,7 @@ for a in args:
         hc = s["crush_ratio"]; hw = [int(x) for x in s["wrap_around"]]
         fa = float(r["alternation_index"]); ha = s["alternation_index"]
         same = sum(sign(fc[i], fc[i + 1]) == sign(hc[i], hc[i + 1]) for i in range(5))
-        alt_ok = ((fa > 0.3) == (ha > 0.3)) and same / 5 >= 0.75
+        alt_ok = ((fa > 0.3) == (ha > 0.3)) and (same / 5 >= 0.75 or not (signs_always or (fa > 0.3 and ha > 0.3)))
         e = s["final_energy_J"]
         ke0 = s["initial_kinetic_energy_J"]
         settings = s.get("level2_settings", {})  # a scene that sets no ratio ran at the defaults echoed here
