@@ -22,7 +22,7 @@
 // All forms below are one template over the vector type: the per-ring one on a one-lane
 // "vector" (a double), whose x and y rows share a Pair in the row sums as before; the lane ones
 // on Pairs of rings (SSE2) and on Quads (AVX2: compiled for "avx2" alone, no FMA, behind the
-// CPU check; generic vector operations, a Quad's square root as its halves' sqrtpd). Every
+// CPU check; generic vector operations, a Quad's square root one vsqrtpd). Every
 // value is formed by the same operations in the same order in all.
 #pragma GCC diagnostic ignored "-Wpsabi"  // the AVX copy of the assembly (below)
 
@@ -33,6 +33,7 @@
 #include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_bar_direction.hpp"
 #include "hinge/ring_lanes.hpp"
+#include "hinge/ring_lanes_wide.hpp"
 
 namespace ringcrush::hinge {
 
@@ -70,13 +71,12 @@ struct Lanes<Pair> {
   [[gnu::always_inline]] static void store(double* p, Pair v) { lanes::store(p, v); }
   [[gnu::always_inline]] static auto direction(Pair wx, Pair wy) { return bar_direction_lanes<PairSqrt>(wx, wy); }
 };
-// A Quad's square root as its halves' (sqrtpd, correctly rounded as std::sqrt): the 256-bit
-// builtin is not declared outside code compiled for AVX, and these helpers are inlined into it.
+// A Quad's square root as one vsqrtpd (correctly rounded as std::sqrt; the builtin is declared
+// by <immintrin.h>, through hinge/ring_lanes_wide.hpp, and these helpers are inlined into the
+// "avx2" copy only). Its halves' two sqrtpd took two slots of the divider, which one 256-bit
+// root takes alone on the test machine (README, h63).
 struct QuadSqrt {
-  [[gnu::always_inline]] static Quad of(Quad x) {
-    const Pair lo = lanes::sqrt(Pair{x[0], x[1]}), hi = lanes::sqrt(Pair{x[2], x[3]});
-    return Quad{lo[0], lo[1], hi[0], hi[1]};
-  }
+  [[gnu::always_inline]] static Quad of(Quad x) { return lanes::Wide<4>::sqrt(x); }
 };
 template <>
 struct Lanes<Quad> {
