@@ -85,6 +85,19 @@ struct Lanes<Quad> {
   [[gnu::always_inline]] static void store(double* p, Quad v) { *reinterpret_cast<lanes::QuadMem*>(p) = v; }
   [[gnu::always_inline]] static auto direction(Quad wx, Quad wy) { return bar_direction_lanes<QuadSqrt>(wx, wy); }
 };
+// Eight rings to an AVX-512 vector (6 rings: one Oct with two spare lanes, where AVX2 took a
+// Quad and a Pair): only in the "avx512f" copy, contraction off.
+using lanes::Oct;
+struct OctSqrt {
+  [[gnu::always_inline]] static Oct of(Oct x) { return lanes::Wide<8>::sqrt(x); }
+};
+template <>
+struct Lanes<Oct> {
+  static constexpr int W = 8;
+  [[gnu::always_inline]] static Oct load(const double* p) { return lanes::Wide<8>::load(p); }
+  [[gnu::always_inline]] static void store(double* p, Oct v) { lanes::Wide<8>::store(p, v); }
+  [[gnu::always_inline]] static auto direction(Oct wx, Oct wy) { return bar_direction_lanes<OctSqrt>(wx, wy); }
+};
 
 // Writes the Live lanes of v (all but a spare one) to p.
 template <int Live = 0, class V>
@@ -93,6 +106,8 @@ template <int Live = 0, class V>
     *p = v;
   } else if constexpr (Live == 0 || Live == Lanes<V>::W) {
     Lanes<V>::store(p, v);
+  } else if constexpr (Lanes<V>::W == 8) {  // one masked store (AVX-512), the spare lanes' slots untouched
+    __builtin_ia32_storeupd512_mask(p, v, static_cast<unsigned char>((1u << Live) - 1u));
   } else {
     for (int l = 0; l < Live; ++l) p[l] = v[l];
   }
@@ -251,7 +266,8 @@ double* scratch_of(double* scratch, int n_ind) {
 }  // namespace
 
 std::size_t ring_band_scratch_size(int n_ind) {
-  return LaneScratch<1>::size(n_ind) + LaneScratch<2>::size(n_ind) + LaneScratch<4>::size(n_ind);
+  return LaneScratch<1>::size(n_ind) + LaneScratch<2>::size(n_ind) + LaneScratch<4>::size(n_ind) +
+         LaneScratch<8>::size(n_ind);
 }
 
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
@@ -286,6 +302,15 @@ template <class V>
       band_rows<V, 2>(E, last, band, S);
     else
       band_rows<V, 3>(E, last, band, S);
+  } else if constexpr (W == 8) {
+    switch (live) {
+      case 2: band_rows<V, 2>(E, last, band, S); break;
+      case 3: band_rows<V, 3>(E, last, band, S); break;
+      case 4: band_rows<V, 4>(E, last, band, S); break;
+      case 5: band_rows<V, 5>(E, last, band, S); break;
+      case 6: band_rows<V, 6>(E, last, band, S); break;
+      default: band_rows<V, 7>(E, last, band, S);
+    }
   }
 }
 
@@ -325,6 +350,9 @@ template <std::ptrdiff_t kS, int Width>
                                                   double* scratch, double* bar_e) {
   const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   int p = 0;
+  if constexpr (Width == 8)  // every ring in Octs, the last one's spare lanes masked off
+    for (; p < rings; p += 8)
+      ring_group<Oct>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
   if constexpr (Width == 4)
     for (; p + 4 <= S; p += 4)
       ring_group<Quad>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
@@ -359,9 +387,21 @@ void assemble_sse2(const double* y, std::size_t ring_stride, int rings, int n_in
                                            double* bar_e) {
   assemble_in_lanes<4>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
 }
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")  // avx512f implies FMA: no product fused into a sum
+[[gnu::target("avx512f")]] void assemble_avx512(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                                double c_bar, double c_hinge, double* band, double* scratch,
+                                                double* bar_e) {
+  assemble_in_lanes<8>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+#pragma GCC pop_options
 #else
 void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
                    double* band, double* scratch, double* bar_e) {
+  assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+void assemble_avx512(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
+                     double* band, double* scratch, double* bar_e) {
   assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
 }
 #endif
@@ -370,7 +410,9 @@ void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_in
 
 void assemble_ring_bands(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar,
                          double c_hinge, double* band, double* scratch, double* bar_e, int width) {
-  if (width == 4 && band_lanes_avx2())
+  if (width == 8 && lanes::wide_lanes_available() == 8)
+    assemble_avx512(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+  else if (width >= 4 && band_lanes_avx2())
     assemble_avx2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
   else
     assemble_sse2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
