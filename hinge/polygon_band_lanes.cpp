@@ -88,6 +88,7 @@ struct Lanes<Quad> {
 // Eight rings to an AVX-512 vector (6 rings: one Oct with two spare lanes, where AVX2 took a
 // Quad and a Pair): only in the "avx512f" copy, contraction off.
 using lanes::Oct;
+#if defined(__x86_64__)
 struct OctSqrt {
   [[gnu::always_inline]] static Oct of(Oct x) { return lanes::Wide<8>::sqrt(x); }
 };
@@ -98,6 +99,7 @@ struct Lanes<Oct> {
   [[gnu::always_inline]] static void store(double* p, Oct v) { lanes::Wide<8>::store(p, v); }
   [[gnu::always_inline]] static auto direction(Oct wx, Oct wy) { return bar_direction_lanes<OctSqrt>(wx, wy); }
 };
+#endif
 
 // Writes the Live lanes of v (all but a spare one) to p.
 template <int Live = 0, class V>

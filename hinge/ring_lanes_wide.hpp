@@ -15,7 +15,9 @@
 // the non-AVX ABI; every such function here is always inlined).
 #pragma once
 
+#if defined(__x86_64__)
 #include <immintrin.h>  // declares the 256- and 512-bit square-root builtins below
+#endif
 
 #include "hinge/ring_lanes.hpp"
 
