@@ -12,7 +12,9 @@
 // inv − q S). B is the row's bandwidth: 5 for a node's y row, 4 for its x row — its column
 // i − 5 is the y of the node three back, which no bar or hinge couples to it, and the factor
 // keeps that zero. The split lets the rings' divisions, the long latency of the chain, run side
-// by side: every lane group's residual, then every group's pivot.
+// by side: every lane group's residual, then every group's pivot — or, where the lane stride is
+// a compile-time constant, each group's residual and pivot in one (row_factor), its last 1/D
+// kept in a register from row to row (h63).
 //
 // Each function is one template over the lane vector — a double (one ring), a Pair (two) or a
 // Quad (four) — whose lanes do the one-ring operations in the same order: the same bits.
