@@ -22,7 +22,7 @@
 // All forms below are one template over the vector type: the per-ring one on a one-lane
 // "vector" (a double), whose x and y rows share a Pair in the row sums as before; the lane ones
 // on Pairs of rings (SSE2) and on Quads (AVX2: compiled for "avx2" alone, no FMA, behind the
-// CPU check; generic vector operations, a Quad's square root as its halves' sqrtpd). Every
+// CPU check; generic vector operations, a Quad's square root one vsqrtpd). Every
 // value is formed by the same operations in the same order in all.
 #pragma GCC diagnostic ignored "-Wpsabi"  // the AVX copy of the assembly (below)
 
@@ -33,6 +33,7 @@
 #include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_bar_direction.hpp"
 #include "hinge/ring_lanes.hpp"
+#include "hinge/ring_lanes_wide.hpp"
 
 namespace ringcrush::hinge {
 
@@ -70,13 +71,12 @@ struct Lanes<Pair> {
   [[gnu::always_inline]] static void store(double* p, Pair v) { lanes::store(p, v); }
   [[gnu::always_inline]] static auto direction(Pair wx, Pair wy) { return bar_direction_lanes<PairSqrt>(wx, wy); }
 };
-// A Quad's square root as its halves' (sqrtpd, correctly rounded as std::sqrt): the 256-bit
-// builtin is not declared outside code compiled for AVX, and these helpers are inlined into it.
+// A Quad's square root as one vsqrtpd (correctly rounded as std::sqrt; the builtin is declared
+// by <immintrin.h>, through hinge/ring_lanes_wide.hpp, and these helpers are inlined into the
+// "avx2" copy only). Its halves' two sqrtpd took two slots of the divider, which one 256-bit
+// root takes alone on the test machine (README, h63).
 struct QuadSqrt {
-  [[gnu::always_inline]] static Quad of(Quad x) {
-    const Pair lo = lanes::sqrt(Pair{x[0], x[1]}), hi = lanes::sqrt(Pair{x[2], x[3]});
-    return Quad{lo[0], lo[1], hi[0], hi[1]};
-  }
+  [[gnu::always_inline]] static Quad of(Quad x) { return lanes::Wide<4>::sqrt(x); }
 };
 template <>
 struct Lanes<Quad> {
@@ -85,6 +85,21 @@ struct Lanes<Quad> {
   [[gnu::always_inline]] static void store(double* p, Quad v) { *reinterpret_cast<lanes::QuadMem*>(p) = v; }
   [[gnu::always_inline]] static auto direction(Quad wx, Quad wy) { return bar_direction_lanes<QuadSqrt>(wx, wy); }
 };
+// Eight rings to an AVX-512 vector (6 rings: one Oct with two spare lanes, where AVX2 took a
+// Quad and a Pair): only in the "avx512f" copy, contraction off.
+using lanes::Oct;
+#if defined(__x86_64__)
+struct OctSqrt {
+  [[gnu::always_inline]] static Oct of(Oct x) { return lanes::Wide<8>::sqrt(x); }
+};
+template <>
+struct Lanes<Oct> {
+  static constexpr int W = 8;
+  [[gnu::always_inline]] static Oct load(const double* p) { return lanes::Wide<8>::load(p); }
+  [[gnu::always_inline]] static void store(double* p, Oct v) { lanes::Wide<8>::store(p, v); }
+  [[gnu::always_inline]] static auto direction(Oct wx, Oct wy) { return bar_direction_lanes<OctSqrt>(wx, wy); }
+};
+#endif
 
 // Writes the Live lanes of v (all but a spare one) to p.
 template <int Live = 0, class V>
@@ -93,6 +108,8 @@ template <int Live = 0, class V>
     *p = v;
   } else if constexpr (Live == 0 || Live == Lanes<V>::W) {
     Lanes<V>::store(p, v);
+  } else if constexpr (Lanes<V>::W == 8) {  // one masked store (AVX-512), the spare lanes' slots untouched
+    __builtin_ia32_storeupd512_mask(p, v, static_cast<unsigned char>((1u << Live) - 1u));
   } else {
     for (int l = 0; l < Live; ++l) p[l] = v[l];
   }
@@ -257,7 +274,8 @@ double* scratch_of(double* scratch, int n_ind) {
 }  // namespace
 
 std::size_t ring_band_scratch_size(int n_ind) {
-  return LaneScratch<1>::size(n_ind) + LaneScratch<2>::size(n_ind) + LaneScratch<4>::size(n_ind);
+  return LaneScratch<1>::size(n_ind) + LaneScratch<2>::size(n_ind) + LaneScratch<4>::size(n_ind) +
+         LaneScratch<8>::size(n_ind);
 }
 
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
@@ -292,6 +310,15 @@ template <class V>
       band_rows<V, 2>(E, last, band, S);
     else
       band_rows<V, 3>(E, last, band, S);
+  } else if constexpr (W == 8) {
+    switch (live) {
+      case 2: band_rows<V, 2>(E, last, band, S); break;
+      case 3: band_rows<V, 3>(E, last, band, S); break;
+      case 4: band_rows<V, 4>(E, last, band, S); break;
+      case 5: band_rows<V, 5>(E, last, band, S); break;
+      case 6: band_rows<V, 6>(E, last, band, S); break;
+      default: band_rows<V, 7>(E, last, band, S);
+    }
   }
 }
 
@@ -331,6 +358,9 @@ template <std::ptrdiff_t kS, int Width>
                                                   double* scratch, double* bar_e) {
   const std::ptrdiff_t S = kS > 0 ? kS : lanes;
   int p = 0;
+  if constexpr (Width == 8)  // every ring in Octs, the last one's spare lanes masked off
+    for (; p < rings; p += 8)
+      ring_group<Oct>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
   if constexpr (Width == 4)
     for (; p + 4 <= S; p += 4)
       ring_group<Quad>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, S, scratch, bar_e, p);
@@ -365,9 +395,21 @@ void assemble_sse2(const double* y, std::size_t ring_stride, int rings, int n_in
                                            double* bar_e) {
   assemble_in_lanes<4>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
 }
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")  // avx512f implies FMA: no product fused into a sum
+[[gnu::target("avx512f")]] void assemble_avx512(const double* y, std::size_t ring_stride, int rings, int n_ind,
+                                                double c_bar, double c_hinge, double* band, double* scratch,
+                                                double* bar_e) {
+  assemble_in_lanes<8>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+#pragma GCC pop_options
 #else
 void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
                    double* band, double* scratch, double* bar_e) {
+  assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+}
+void assemble_avx512(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar, double c_hinge,
+                     double* band, double* scratch, double* bar_e) {
   assemble_in_lanes<2>(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
 }
 #endif
@@ -376,7 +418,9 @@ void assemble_avx2(const double* y, std::size_t ring_stride, int rings, int n_in
 
 void assemble_ring_bands(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar,
                          double c_hinge, double* band, double* scratch, double* bar_e, int width) {
-  if (width == 4 && band_lanes_avx2())
+  if (width == 8 && lanes::wide_lanes_available() == 8)
+    assemble_avx512(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
+  else if (width >= 4 && band_lanes_avx2())
     assemble_avx2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);
   else
     assemble_sse2(y, ring_stride, rings, n_ind, c_bar, c_hinge, band, scratch, bar_e);

@@ -32,9 +32,10 @@ std::size_t ring_band_scratch_size(int n_ind);
 void assemble_ring_band(const double* y, int n_ind, double c_bar, double c_hinge, double* band, std::ptrdiff_t S,
                         double* scratch, double* bar_e);
 
-// All rings, `width` to a vector: two (SSE2), or four (AVX2, then a pair for the rest) where
-// band_lanes_avx2 (polygon_band_solve.hpp) says the CPU has it, two otherwise. Bitwise the rings'
-// assemble_ring_band (a spare lane untouched).
+// All rings, `width` to a vector: two (SSE2), four (AVX2, then a pair for the rest) where
+// band_lanes_avx2 (polygon_band_solve.hpp) says the CPU has it, or eight (AVX-512, the last
+// vector's spare lanes masked off) where lanes::wide_lanes_available() is 8; the widest the CPU
+// has up to `width`, two at least. Bitwise the rings' assemble_ring_band (a spare lane untouched).
 void assemble_ring_bands(const double* y, std::size_t ring_stride, int rings, int n_ind, double c_bar,
                          double c_hinge, double* band, double* scratch, double* bar_e, int width);
 

@@ -12,7 +12,9 @@
 // inv − q S). B is the row's bandwidth: 5 for a node's y row, 4 for its x row — its column
 // i − 5 is the y of the node three back, which no bar or hinge couples to it, and the factor
 // keeps that zero. The split lets the rings' divisions, the long latency of the chain, run side
-// by side: every lane group's residual, then every group's pivot.
+// by side: every lane group's residual, then every group's pivot — or, where the lane stride is
+// a compile-time constant, each group's residual and pivot in one (row_factor), its last 1/D
+// kept in a register from row to row (h63).
 //
 // Each function is one template over the lane vector — a double (one ring), a Pair (two) or a
 // Quad (four) — whose lanes do the one-ring operations in the same order: the same bits.
@@ -54,9 +56,11 @@ struct Lanes<Quad> {  // generic vector operations only: inlined into the avx2 c
   [[gnu::always_inline]] static bool positive(Quad s) { return s[0] > 0.0 && s[1] > 0.0 && s[2] > 0.0 && s[3] > 0.0; }
 };
 
-template <int B, class V>
-[[gnu::always_inline]] inline void row_residual(const double* c, double h, V mass, double* row, const double* inv,
-                                                double* b, std::ptrdiff_t S) {
+// Returns the pivot D(i). inv_last: 1/D(i − 1) where the caller carries it in a register
+// (Carried), else it is read from inv − S as the older ones are.
+template <int B, bool Carried = false, class V>
+[[gnu::always_inline]] inline V row_residual(const double* c, double h, V mass, double* row, const double* inv,
+                                             double* b, std::ptrdiff_t S, V inv_last = V{}) {
   using O = Lanes<V>;
   V w[B + 1], l[B + 1];
   for (int q = 0; q <= B; ++q) w[q] = h * O::load(c + q * S);
@@ -66,7 +70,7 @@ template <int B, class V>
     V s = w[q];
     for (int m = B; m > q; --m) s -= w[m] * O::load(lj + (m - q) * S);
     w[q] = s;
-    l[q] = s * O::load(inv - q * S);
+    l[q] = s * (Carried && q == 1 ? inv_last : O::load(inv - q * S));
   }
   V s = w[0];
   for (int m = B; m >= 1; --m) s -= w[m] * l[m];
@@ -75,6 +79,7 @@ template <int B, class V>
   V z = O::load(b);
   for (int m = B; m >= 1; --m) z -= l[m] * O::load(b - m * S);
   O::store(b, z);
+  return s;
 }
 
 template <class V>
@@ -83,6 +88,22 @@ template <class V>
   const V s = O::load(row);
   O::store(inv, 1.0 / s);
   return O::positive(s);
+}
+
+// One row's residual and pivot with the chain's last link in registers: the previous row's
+// 1/D comes in as inv_last and this row's goes out, D goes from the residual to its division
+// without the store and load of the two-stage form (each a store-to-load forwarding, ≈ 7
+// cycles, on the chain D(i − 1) → 1/D(i − 1) → L(i, i − 1) → D(i) → 1/D(i), which is this
+// solve's latency). The same operations on the same values: the same bits.
+template <int B, class V>
+[[gnu::always_inline]] inline V row_factor(const double* c, double h, V mass, double* row, double* inv, double* b,
+                                           std::ptrdiff_t S, V inv_last, bool& definite) {
+  using O = Lanes<V>;
+  const V s = row_residual<B, true>(c, h, mass, row, inv, b, S, inv_last);
+  const V inv_s = 1.0 / s;
+  O::store(inv, inv_s);
+  definite &= O::positive(s);
+  return inv_s;
 }
 
 // Row i of the backward substitution Lᵀ x = D⁻¹ z: the column of L below the diagonal,
@@ -168,6 +189,18 @@ template <int kS, int Width>
   double *L = p.L, *b = p.b, *inv = p.inv, *v = p.v, *d = p.d;
   auto node = [&](int r, int j) { return static_cast<std::size_t>((r * n_ind + j) * 6); };  // node_offset
   bool definite = true;
+  // With the lane stride known (kS) and the rings in vectors, each lane group's last 1/D is
+  // carried in a register from row to row (row_factor): Quads first, then Pairs, as
+  // each_lane_group orders them. Else the two stages through memory.
+  constexpr bool kCarried = kS > 0 && Width >= 2;
+  constexpr int kQuads = kCarried && Width == 4 ? kS / 4 : 0;
+  constexpr int kPairs = kCarried ? (kS - 4 * kQuads) / 2 : 0;
+  Quad inv_quad[kQuads > 0 ? kQuads : 1];
+  Pair inv_pair[kPairs > 0 ? kPairs : 1];
+  if constexpr (kCarried) {  // the pad row's 1/D (1) before row 0
+    for (int g = 0; g < kQuads; ++g) inv_quad[g] = Lanes<Quad>::load(inv - S + 4 * g);
+    for (int g = 0; g < kPairs; ++g) inv_pair[g] = Lanes<Pair>::load(inv - S + 4 * kQuads + 2 * g);
+  }
   for (int j = 0; j < n_ind; ++j) {
     const bool axis = j == 0 || j == n_ind - 1;  // axis nodes' x stays 0
     const std::ptrdiff_t at = 12 * static_cast<std::ptrdiff_t>(j) * S;
@@ -179,15 +212,39 @@ template <int kS, int Width>
       bx[r] = axis ? 0.0 : mv[0];
       bx[S + r] = mv[1];
     }
-    Residual<4> x_row{C + at, mu, L + at, ix, bx, h, S, n_ind, R, j};
-    each_lane_group<Width>(x_row, S, R);
-    Pivot x_pivot{L + at, ix, true};
-    each_lane_group<Width>(x_pivot, S, R);
-    Residual<5> y_row{C + at + 6 * S, mu, L + at + 6 * S, ix + S, bx + S, h, S, n_ind, R, j};
-    each_lane_group<Width>(y_row, S, R);
-    Pivot y_pivot{L + at + 6 * S, ix + S, true};
-    each_lane_group<Width>(y_pivot, S, R);
-    definite = definite && x_pivot.definite && y_pivot.definite;
+    if constexpr (kCarried) {
+      // The node's x row (bandwidth 4), then its y row (5), each lane group in turn.
+      const std::ptrdiff_t rows[2] = {0, S};
+      for (int row = 0; row < 2; ++row) {
+        const std::ptrdiff_t at_row = at + 6 * rows[row];
+        for (int g = 0; g < kQuads; ++g) {
+          const int r = 4 * g;
+          const Quad mass = lane_masses<Quad>(mu, n_ind, R, r, j);
+          inv_quad[g] = row == 0 ? row_factor<4>(C + at_row + r, h, mass, L + at_row + r, ix + r, bx + r, S,
+                                                 inv_quad[g], definite)
+                                 : row_factor<5>(C + at_row + r, h, mass, L + at_row + r, ix + S + r, bx + S + r, S,
+                                                 inv_quad[g], definite);
+        }
+        for (int g = 0; g < kPairs; ++g) {
+          const int r = 4 * kQuads + 2 * g;
+          const Pair mass = lane_masses<Pair>(mu, n_ind, R, r, j);
+          inv_pair[g] = row == 0 ? row_factor<4>(C + at_row + r, h, mass, L + at_row + r, ix + r, bx + r, S,
+                                                 inv_pair[g], definite)
+                                 : row_factor<5>(C + at_row + r, h, mass, L + at_row + r, ix + S + r, bx + S + r, S,
+                                                 inv_pair[g], definite);
+        }
+      }
+    } else {
+      Residual<4> x_row{C + at, mu, L + at, ix, bx, h, S, n_ind, R, j};
+      each_lane_group<Width>(x_row, S, R);
+      Pivot x_pivot{L + at, ix, true};
+      each_lane_group<Width>(x_pivot, S, R);
+      Residual<5> y_row{C + at + 6 * S, mu, L + at + 6 * S, ix + S, bx + S, h, S, n_ind, R, j};
+      each_lane_group<Width>(y_row, S, R);
+      Pivot y_pivot{L + at + 6 * S, ix + S, true};
+      each_lane_group<Width>(y_pivot, S, R);
+      definite = definite && x_pivot.definite && y_pivot.definite;
+    }
   }
   if (!definite) return false;
   for (int j = n_ind - 1; j >= 0; --j) {

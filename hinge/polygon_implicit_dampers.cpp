@@ -29,6 +29,7 @@
 #include "hinge/polygon_band_lanes.hpp"
 #include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_chain.hpp"
+#include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
 
@@ -142,7 +143,8 @@ namespace {
 inline int lane_count(int rings) { return band_lane_count(rings); }
 
 // How many rings to a vector in the band's assembly and solve: 1 with the ring lanes off (the
-// reference), else 4 (AVX2 where the CPU has it, 2 otherwise). In a build with FMA
+// reference), else 4 (AVX2 where the CPU has it, 2 otherwise) — the assembly 8 where the CPU
+// has AVX-512 (hinge/ring_lanes_wide.hpp; the solve's chain is its latency, not its width). In a build with FMA
 // (RINGCRUSH_NATIVE) the assembly stays ring by ring and the solve two to a vector, as before
 // the lanes: GCC may fuse a product into a sum there, on the lanes differently from the
 // ring-by-ring form (as ring_lanes_apply).
@@ -151,8 +153,8 @@ inline int lane_width(bool ring_lanes, bool assembly) {
   (void)ring_lanes;
   return assembly ? 1 : 2;
 #else
-  (void)assembly;
-  return ring_lanes ? 4 : 1;
+  if (!ring_lanes) return 1;
+  return assembly && lanes::wide_lanes_available() == 8 ? 8 : 4;
 #endif
 }
 

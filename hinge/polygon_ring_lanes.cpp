@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "hinge/polygon_bar_lanes.hpp"
 #include "hinge/polygon_chain.hpp"
 #include "hinge/polygon_hinge_angle.hpp"
 #include "hinge/ring_lanes.hpp"
@@ -120,29 +121,13 @@ void PolygonChain::ring_lanes_gather(const double* y, double* phi) {
 }
 
 // Bars k ∈ bar_ranges_: e = w/ℓ, n/ℓ (the far end's ∂β/∂p) and the membrane force
-// N = k_m (ℓ − ℓ0), as ring_bars and central_difference_ring_laws.
+// N = k_m (ℓ − ℓ0), as ring_bars and central_difference_ring_laws; each range one flat run of
+// lanes, eight, four or two values to a vector (polygon_bar_lanes.hpp).
 void PolygonChain::ring_lanes_bars() {
-  const auto L = static_cast<std::size_t>(lanes_);
-  const double* __restrict px = lane_px_.data();
-  const double* __restrict py = lane_py_.data();
-  double* __restrict ex = lane_ex_.data();
-  double* __restrict ey = lane_ey_.data();
-  double* __restrict gx = lane_gx_.data();
-  double* __restrict gy = lane_gy_.data();
-  double* __restrict n = lane_n_.data();
-  const double k_m = k_m_, l0 = l0_;
-  for (const auto& range : bar_ranges_)
-    for (auto at = static_cast<std::size_t>(range[0]) * L; at < static_cast<std::size_t>(range[1]) * L; at += 2) {
-      const Pair bx = lanes::load(px + at + L) - lanes::load(px + at);
-      const Pair by = lanes::load(py + at + L) - lanes::load(py + at);
-      const Pair l = lanes::sqrt(bx * bx + by * by), inv = 1.0 / l;
-      const Pair e_x = bx * inv, e_y = by * inv;
-      lanes::store(ex + at, e_x);
-      lanes::store(ey + at, e_y);
-      lanes::store(gx + at, -e_y * inv);
-      lanes::store(gy + at, e_x * inv);
-      lanes::store(n + at, k_m * (l - l0));
-    }
+  const BarLanes b{lane_px_.data(), lane_py_.data(), lane_ex_.data(), lane_ey_.data(), lane_gx_.data(),
+                   lane_gy_.data(), lane_n_.data(), static_cast<std::size_t>(lanes_), k_m_, l0_};
+  const int width = lanes::wide_lanes_available();
+  for (const auto& range : bar_ranges_) bar_lanes(b, range[0], range[1], width);
 }
 
 namespace {

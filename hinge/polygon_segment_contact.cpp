@@ -166,7 +166,9 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     if (landing_depth_ > 0.0 && pen <= 0.0 && best < 2.0 * t_) {  // closing speed −(v − v_q)·n
       const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
       const double s = best_s;
-      const double nx = (sx - ((1 - s) * y[oa] + s * y[ob])) / best, ny = (sy - ((1 - s) * y[oa + 1] + s * y[ob + 1])) / best;
+      // The normal's two quotients as one divpd (the divider's slot, not its width, is the cost).
+      const lanes::Pair n = lanes::Pair{sx - ((1 - s) * y[oa] + s * y[ob]), sy - ((1 - s) * y[oa + 1] + s * y[ob + 1])} / best;
+      const double nx = n[0], ny = n[1];
       const double vqx = (1 - s) * y[oa + 2] + s * y[ob + 2], vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
       note_landing(-pen, -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny));
     }
@@ -175,7 +177,8 @@ void PolygonChain::node_segment_contact(int rs, int rm, bool self, const double*
     const auto oa = node_offset(rm, a), ob = node_offset(rm, b);
     const double s = best_s;
     const double qx = (1 - s) * y[oa] + s * y[ob], qy = (1 - s) * y[oa + 1] + s * y[ob + 1];
-    const double nx = (sx - qx) / best, ny = (sy - qy) / best;
+    const lanes::Pair n = lanes::Pair{sx - qx, sy - qy} / best;  // one divpd, as above
+    const double nx = n[0], ny = n[1];
     const double vqx = (1 - s) * y[oa + 2] + s * y[ob + 2];
     const double vqy = (1 - s) * y[oa + 3] + s * y[ob + 3];
     const double rate = -((y[os + 2] - vqx) * nx + (y[os + 3] - vqy) * ny);

@@ -22,6 +22,8 @@
 #include <limits>
 
 #include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_node_step_lanes.hpp"
+#include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
 
@@ -42,16 +44,18 @@ double PolygonChain::stable_step_scan(unsigned terms, bool every_node) const {
   const int jb = half_ ? n_ind_ - 1 : n_full_ / 2;
   const double w_tie = half_ ? 0.5 : 1.0;
   const double none = std::numeric_limits<double>::infinity();
-  auto limit = [&](double K, double C, double mass) {
-    if (!(K > 0.0)) return none;
-    const double omega = std::sqrt(K / mass);
-    const double xi = C / (2.0 * std::sqrt(K * mass));
-    return 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
+  auto limit = [&](double K, double C, double mass) { return node_step_limit(K, C, mass); };
+  // A node's stiffness, damping and mass rows.
+  auto node_rows = [&](double w, bool tied, double k_contact, double c_contact, double& K, double& C, double& mass) {
+    K = w * k_ring + k_contact;
+    if (tied) K += 2.0 * w_tie * k_tie_;
+    C = w * c_ring + c_contact;
+    mass = w * m_node_;
   };
   auto node_step = [&](double w, bool tied, double k_contact, double c_contact) {
-    double K = w * k_ring + k_contact;
-    if (tied) K += 2.0 * w_tie * k_tie_;
-    return limit(K, w * c_ring + c_contact, w * m_node_);
+    double K, C, mass;
+    node_rows(w, tied, k_contact, c_contact, K, C, mass);
+    return limit(K, C, mass);
   };
   // A node without contact rows has the step of every such node of its weight and tie: the
   // same operands, so the same bits. Each such class's step is computed once (the square
@@ -66,11 +70,28 @@ double PolygonChain::stable_step_scan(unsigned terms, bool every_node) const {
   int members[2][2] = {{0, 0}, {0, 0}}, with_rows[2][2] = {{0, 0}, {0, 0}};
   double dt = none;
   // A node with contact rows: its own step; returns false for one without (both rows 0).
+  // The contact nodes' rows are gathered and their limits taken several to a vector
+  // (polygon_node_step_lanes.hpp: the divisions and square roots were the scan's cost).
+  constexpr int kBatch = 64;
+  double batch_k[kBatch], batch_c[kBatch], batch_mass[kBatch];
+  int batched = 0;
+  const int width = lanes::wide_lanes_available();
+  auto flush = [&] {
+    dt = min_node_step_limit(dt, batch_k, batch_c, batch_mass, batched, width);
+    batched = 0;
+  };
+  // The every-node scan (the reference) takes each node's limit at once, one by one.
   auto contact_node = [&](int r, int j) {
     const auto g = static_cast<std::size_t>(r * n_ind_ + j);
     const double k_contact = contacts ? contact_k_row_[g] : 0.0, c_contact = contact_c_row_[g];
     if (k_contact == 0.0 && c_contact == 0.0) return false;
-    dt = std::min(dt, node_step(weight(j), tied_node(r, j), k_contact, c_contact));
+    if (every_node) {
+      dt = std::min(dt, node_step(weight(j), tied_node(r, j), k_contact, c_contact));
+      return true;
+    }
+    node_rows(weight(j), tied_node(r, j), k_contact, c_contact, batch_k[batched], batch_c[batched],
+              batch_mass[batched]);
+    if (++batched == kBatch) flush();
     return true;
   };
   auto class_of = [&](int r, int j, int& axis, int& tie) {
@@ -115,6 +136,7 @@ double PolygonChain::stable_step_scan(unsigned terms, bool every_node) const {
       if (contact_node(r, j)) ++with_rows[a][t];
     }
   }
+  if (batched > 0) flush();
   for (int a = 0; a < 2; ++a)
     for (int t = 0; t < 2; ++t)
       if (members[a][t] > with_rows[a][t]) dt = std::min(dt, node_step(a == 0 ? 1.0 : 0.5, t == 1, 0.0, 0.0));

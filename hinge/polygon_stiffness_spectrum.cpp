@@ -31,12 +31,13 @@ void PolygonChain::stiffness_triplets(double t, const double* y, std::vector<Tri
 }
 
 PolygonStiffnessSpectrum::PolygonStiffnessSpectrum(PolygonChain& chain) : chain_(chain) {
-  dof_of_row_.assign(chain.size(), -1);
+  force_dof_.assign(chain.size(), -1);
+  position_dof_.assign(chain.size(), -1);
   auto add = [&](std::size_t position_row, std::size_t velocity_row) {
     const int dof = static_cast<int>(position_.size());
     position_.push_back(position_row);
     inv_sqrt_mass_.push_back(1.0 / std::sqrt(chain.mass_row(velocity_row)));
-    dof_of_row_[position_row] = dof_of_row_[velocity_row] = dof;
+    position_dof_[position_row] = force_dof_[velocity_row] = dof;
   };
   const bool half = chain.input().half_symmetry;
   for (int r = 0; r < chain.ring_count(); ++r)
@@ -75,10 +76,8 @@ PolygonStiffnessSpectrum::Estimate PolygonStiffnessSpectrum::estimate(double t, 
   entries_.clear();
   for (const auto& e : triplets_) {
     const auto row = static_cast<std::size_t>(e.row), col = static_cast<std::size_t>(e.col);
-    const int i = dof_of_row_[row], j = dof_of_row_[col];
-    if (i < 0 || j < 0 || row == position_[static_cast<std::size_t>(i)] ||
-        col != position_[static_cast<std::size_t>(j)] || e.value == 0.0)
-      continue;
+    const int i = force_dof_[row], j = position_dof_[col];
+    if (i < 0 || j < 0 || e.value == 0.0) continue;
     entries_.push_back({i, j, e.value * inv_sqrt_mass_[static_cast<std::size_t>(i)] *
                                   inv_sqrt_mass_[static_cast<std::size_t>(j)]});
   }

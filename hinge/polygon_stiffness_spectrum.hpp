@@ -46,7 +46,9 @@ class PolygonStiffnessSpectrum {
   PolygonChain& chain_;
   std::vector<std::size_t> position_;        // dof → state row of its position
   std::vector<double> inv_sqrt_mass_;        // dof → M^{-1/2}
-  std::vector<int> dof_of_row_;              // state row (position or velocity) → dof, −1 none
+  // State row → dof where the row is that dof's force (velocity) row, resp. its position row;
+  // −1 elsewhere: the filter of the Jacobian's triplets is two look-ups (h63).
+  std::vector<int> force_dof_, position_dof_;
   std::vector<PolygonChain::Triplet> triplets_;
   std::vector<Entry> entries_;
   std::vector<double> x_, ax_;

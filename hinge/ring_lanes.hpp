@@ -22,6 +22,10 @@ typedef double Quad __attribute__((vector_size(32)));
 typedef long long QuadMask __attribute__((vector_size(32)));
 typedef double QuadMem __attribute__((vector_size(32), aligned(8), may_alias));
 
+// The widest vector, 8, 4 or 2 doubles (AVX-512, AVX2, SSE2), that this CPU and build run the
+// elementwise kernels of hinge/ring_lanes_wide.hpp with (2 in a build with FMA).
+int wide_lanes_available();
+
 [[gnu::always_inline]] inline Pair load(const double* p) { return *reinterpret_cast<const PairMem*>(p); }
 [[gnu::always_inline]] inline void store(double* p, Pair v) { *reinterpret_cast<PairMem*>(p) = v; }
 

@@ -12,6 +12,7 @@
 #include "hinge/polygon_band_lanes.hpp"
 #include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_chain.hpp"
+#include "hinge/ring_lanes.hpp"
 #include "two_ring_chain.hpp"
 
 using namespace ringcrush::hinge;
@@ -103,9 +104,18 @@ TEST(PolygonBandLanes, FourToAVectorEqualsTheRingByRingAssemblyToTheBit) {
   expect_same_as_ring_by_ring(4);
 }
 
+// Eight to an AVX-512 vector (h63): three, four, five and seven rings are one vector with five,
+// four, three and one spare lanes, whose band slots the masked stores leave alone.
+TEST(PolygonBandLanes, EightToAVectorEqualsTheRingByRingAssemblyToTheBit) {
+  if (ringcrush::hinge::lanes::wide_lanes_available() < 8)
+    GTEST_SKIP() << "the CPU has no AVX-512F: the eight-ring lanes do not run";
+  expect_same_as_ring_by_ring(8);
+}
+
 // The chain's band and solve are the lane ones: the kick and the plain damper step give v, d,
 // K_m w and K_m v to the bit with the lanes on and off (ring by ring), on three rings (a spare
-// lane) and five (with AVX2 a quad, then a pair with a spare lane).
+// lane) and five (with AVX2 a quad, then a pair with a spare lane; with AVX-512 the assembly one
+// vector with three spare lanes).
 TEST(PolygonBandLanes, ChainKickAndStepEqualTheRingByRingBand) {
   for (const int rings : {3, 5}) {
     PolygonChain on(apart(rings)), off(apart(rings));
