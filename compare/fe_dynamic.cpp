@@ -8,21 +8,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "compare/fe_integration.hpp"
 #include "compare/run_output.hpp"
 #include "compare/svg_plot.hpp"
 #include "fe/output/vtu_writer.hpp"
 
 namespace ringcrush::compare {
 namespace {
-
-fe::Integration integration_of(Integration i) {
-  switch (i) {
-    case Integration::Full: return fe::Integration::Full;
-    case Integration::Reduced: return fe::Integration::Reduced;
-    case Integration::Selective: return fe::Integration::Selective;
-  }
-  return fe::Integration::Selective;
-}
 
 fe::JointKind joint_of(JointType j) {
   switch (j) {
@@ -99,7 +91,7 @@ fe::ChainInput fe_chain_input(const Scene& s) {
   in.mesh.elements_through = s.fe.elements_through;
   in.mesh.grading = s.fe.grading;
   in.mesh.half_ring = s.analysis.symmetry == Symmetry::Half;
-  in.integration = integration_of(s.fe.integration);
+  in.integration = fe_integration(s.fe.integration);
   in.contact.penalty_scale = s.fe.contact_penalty_scale;
   in.contact.smoothing = s.fe.contact_smoothing;
   in.contact.arrival_depth = s.fe.contact_arrival_depth;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "compare/fe_integration.hpp"
 #include "compare/formula.hpp"
 #include "compare/svg_plot.hpp"
 #include "compare/table_output.hpp"
@@ -41,11 +42,7 @@ fe::FeInput fe_static_input(const Scene& s) {
   in.mesh.elements_through = s.fe.elements_through;
   in.mesh.grading = s.fe.grading;
   in.mesh.half_ring = s.analysis.symmetry == Symmetry::Half;
-  switch (s.fe.integration) {
-    case Integration::Full: in.integration = fe::Integration::Full; break;
-    case Integration::Reduced: in.integration = fe::Integration::Reduced; break;
-    case Integration::Selective: in.integration = fe::Integration::Selective; break;
-  }
+  in.integration = fe_integration(s.fe.integration);
   in.contact.penalty_scale = s.fe.contact_penalty_scale;
   in.contact.smoothing = s.fe.contact_smoothing;
   // Coulomb friction at the plates (the inner wall against itself stays frictionless).

@@ -7,19 +7,11 @@
 #include <mutex>
 #include <set>
 
+#include "compare/fe_integration.hpp"
 #include "fe/element/through_wall_plastic_moment.hpp"
 
 namespace ringcrush::compare {
 namespace {
-
-fe::Integration fe_rule(Integration i) {
-  switch (i) {
-    case Integration::Full: return fe::Integration::Full;
-    case Integration::Reduced: return fe::Integration::Reduced;
-    case Integration::Selective: return fe::Integration::Selective;
-  }
-  return fe::Integration::Selective;
-}
 
 const char* rule_key(Integration i) {
   switch (i) {
@@ -31,7 +23,7 @@ const char* rule_key(Integration i) {
 }
 
 std::string points_across(const Scene& s) {
-  const int points = fe::gauss_points_through(fe_rule(s.fe.integration));
+  const int points = fe::gauss_points_through(fe_integration(s.fe.integration));
   return s.fe.elements_through == 1
              ? fmt::format("{} Gauss points across one element", points)
              : fmt::format("{} Gauss points across each of {} elements", points, s.fe.elements_through);
@@ -40,7 +32,7 @@ std::string points_across(const Scene& s) {
 }  // namespace
 
 double fe_plastic_moment_factor(const Scene& s) {
-  return fe::through_wall_plastic_moment(s.fe.elements_through, fe_rule(s.fe.integration));
+  return fe::through_wall_plastic_moment(s.fe.elements_through, fe_integration(s.fe.integration));
 }
 
 std::string through_wall_section_line(const Scene& s) {
