@@ -40,7 +40,7 @@ Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   s.tie_stiffness_scale *= penalty;
   if (implicit) s.central_difference_safety = kImplicitMembraneSafety;
   s.membrane_damping_ratio = scene.hinge.membrane_damping_ratio.value_or(s.membrane_damping_ratio);
-  s.hinge_damping_ratio = scene.hinge.hinge_damping_ratio.value_or(cd ? kCentralDifferenceHingeDampingRatio : s.hinge_damping_ratio);
+  s.hinge_damping_ratio = scene.hinge.hinge_damping_ratio.value_or(s.hinge_damping_ratio);
   s.flow_d_per_s = scene.hinge.level2_flow_rate_per_s.value_or(s.flow_d_per_s);
   s.flow_q = scene.hinge.level2_flow_exponent.value_or(s.flow_q);
   return s;

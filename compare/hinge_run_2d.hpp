@@ -33,23 +33,29 @@ struct Level2Settings {
   double membrane_stiffness_scale = 1.0;
   // Kelvin–Voigt ratios of the membrane bars and the hinge rotations (PolygonChainInput); the
   // scene's [hinge] membrane_damping_ratio and hinge_damping_ratio set them (level2_settings).
-  // ζ_b calibrated against the explicit FE (data/reference/fe_explicit_velocity.csv: the thesis
-  // scene at 15–50 m/s and Test 30 welded / free / plated; README "FE against the hinge model",
-  // session 14): at 0.3 instead of 1 the dampers take 7.5 % of KE0 instead of 13 %, the plastic
-  // work rises from 0.87 to 0.92 of the FE's (within 15 % at 10 of the 11 cases, 8 before), the
-  // mean |Δ crush| per ring falls from 0.083 to 0.061, the alternation verdict passes at 7 cases
-  // instead of 6, the wrap flags miss as often (9 of 66); IDA takes 1.6× the steps. ζ_m changes
-  // none of these (0.05–1 alike; with ζ_b 0.05 and ζ_m ≤ 0.1 the central difference diverges at
+  // The dampers are a numerical device: the FE dissipates ≤ 0.16 % of the impact energy outside
+  // plasticity, and what they take the FE puts into plastic work. ζ_b calibrated against the
+  // explicit FE with two elements through the wall (data/reference/fe_explicit_48x2.csv, the
+  // thesis scene at 15–50 m/s and Test 30 welded / free / plated; README "FE against the hinge
+  // model", sessions 14, 16 and 17): 0.15 against 0.3 cuts the dampers' share of the kinetic
+  // energy from 7.3 % to 4.8 % (at 50 m/s 15.4 → 10.7 %), the largest |Δ crush| on the 11 cases
+  // from 0.185 to 0.142 (central difference) and the main job's from 0.135 to 0.079 (IDA); at
+  // 0.05 the central difference diverges (40 m/s). One value for every integrator since session
+  // 17 (IDA kept 0.3 in session 16 because at rtol 1e-3 its balance passed 1e-3 below it:
+  // Test 30 free 1.3e-3 at 0.15; default_relative_tolerance below closes that). ζ_m changes none
+  // of the scores (0.05–1 alike; with ζ_b 0.05 and ζ_m ≤ 0.1 the central difference diverges at
   // 50 m/s): it stays 1.
-  // IDA's default; the central difference takes kCentralDifferenceHingeDampingRatio below.
   double membrane_damping_ratio = 1.0;
-  double hinge_damping_ratio = 0.3;
+  double hinge_damping_ratio = 0.15;
   double output_interval_s = 2e-5;        // history and shape samples
   double settle_time_s = 1e-3;            // run on after the impactor stops
   // Level 2 runs at rtol ≥ this; a smaller request (the scenes' 1e-8 is for Levels 0/1)
-  // is raised to `default_relative_tolerance` and reported.
+  // is raised to `default_relative_tolerance` and reported. 3e-4 since session 17: at the
+  // ζ_b = 0.15 above, IDA's energy balance at 1e-3 reaches 1.3e-3 (Test 30 free); at 3e-4 it
+  // is ≤ 4.2e-4 on all 13 FE reference cases with the crush per ring within 0.004 of the 1e-3
+  // run and the same wrap flags, for 1.3–2.3× the steps (README "FE against the hinge model").
   double min_relative_tolerance = 1e-6;
-  double default_relative_tolerance = 1e-3;
+  double default_relative_tolerance = 3e-4;
   // IDA's absolute tolerances are 1e-3 × rtol × the component scale (R, V, 1 rad, KE0), and
   // factors on them for the velocities and for θp, ā (hinge/polygon_ida.hpp): the node
   // velocities' 2.8e-5 m/s (at rtol 1e-3) set 93 % of the steps. 30 and 3 cut the Test 30
@@ -136,18 +142,6 @@ inline constexpr double kImplicitMembranePenaltyScale = 0.0625;
 // Level2Settings (explicit membrane at full EA, penalties × 1) diverge at 1.0 on Test 30 cut to
 // three rings (PolygonCentralDifference.SameFlagsAsIdaOnAShortChain): they keep 0.8.
 inline constexpr double kImplicitMembraneSafety = 0.9;
-// ζ_b of the central difference (session 16, h62): the hinge dampers are a numerical device
-// (PolygonChainInput), and the central difference needs less of it than IDA. Against the FE
-// with two elements through the wall (data/reference/fe_explicit_48x2.csv, 11 cases; README
-// "FE against the hinge model", session 16) 0.15 instead of 0.3 cuts the dampers' share of the
-// kinetic energy from 7.3 % to 4.8 % (at 50 m/s 15.4 → 10.7 %; the FE dissipates ≤ 0.16 %
-// outside plasticity), the largest |Δ crush| from 0.185 to 0.142 and the mean from 0.039 to
-// 0.024, the crush verdict passes at 11 cases (9), the absorbed energy at 11 (10), the wrap
-// flags miss as often (3 of 66); the balance stays ≤ 1.6e-4 at kImplicitMembraneSafety, and the
-// transition out of alternation moves from 36.3 to 35.6 m/s (FE 34.6). At 0.05 the central
-// difference diverges (40 m/s, energy limit). IDA keeps 0.3: at rtol 1e-3 its balance passes
-// 1e-3 below it (Test 30 free 1.3e-3 at 0.15; the thesis scene at 15–20 m/s 1.1–1.3e-3 at 0.1).
-inline constexpr double kCentralDifferenceHingeDampingRatio = 0.15;
 Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator);
 
 hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings& settings = {});

@@ -19,18 +19,17 @@ constexpr HingeIntegrator kIntegrators[] = {HingeIntegrator::Ida, HingeIntegrato
                                             HingeIntegrator::CentralDifference};
 }  // namespace
 
-// ... ζ_b of the central difference its own (kCentralDifferenceHingeDampingRatio, session 16).
+// ... the same on every integrator since session 17 (the central difference had its own
+// 0.15 in session 16, IDA and Odeint 0.3).
 TEST(Level2DampingRatio, UnsetIsTheDefault) {
   const Scene scene = test30_welded();
   for (auto integrator : kIntegrators) {
     const auto in = polygon_input(scene, level2_settings(scene, integrator));
-    EXPECT_EQ(in.membrane_damping_ratio, Level2Settings{}.membrane_damping_ratio);
-    EXPECT_EQ(in.hinge_damping_ratio, integrator == HingeIntegrator::CentralDifference
-                                          ? kCentralDifferenceHingeDampingRatio
-                                          : Level2Settings{}.hinge_damping_ratio);
+    EXPECT_EQ(in.membrane_damping_ratio, 1.0);
+    EXPECT_EQ(in.hinge_damping_ratio, 0.15);
   }
-  EXPECT_EQ(kCentralDifferenceHingeDampingRatio, 0.15);
-  EXPECT_EQ(Level2Settings{}.hinge_damping_ratio, 0.3);
+  EXPECT_EQ(Level2Settings{}.hinge_damping_ratio, 0.15);
+  EXPECT_EQ(Level2Settings{}.default_relative_tolerance, 3e-4);
 }
 
 TEST(Level2DampingRatio, SceneKeysReachTheChainInput) {

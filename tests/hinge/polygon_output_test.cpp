@@ -56,7 +56,7 @@ TEST(PolygonOutput, RunResultAndShapeFiles) {
   const auto run = run_level2(scene, o);
   const auto& r = run.result;
   EXPECT_EQ(r.model, "hinge");
-  EXPECT_DOUBLE_EQ(run.relative_tolerance_used, 1e-3);
+  EXPECT_DOUBLE_EQ(run.relative_tolerance_used, Level2Settings{}.default_relative_tolerance);
   EXPECT_TRUE(r.extra.contains("note"));
   ASSERT_EQ(r.ring_crush_m.size(), 2u);
   const auto n = r.time_s.size();

@@ -9,7 +9,7 @@
 //      (30–60°) (thesis §4.2.3, THEORY §4.1). Tolerance ±11.25° = 1.5 node spacings at N = 48: a peak is located to
 //      one node (7.5°), and the thesis places its hinges only to the element (3.75°) on
 //      figures we do not have.
-// Each case is a full impact (~15 ms simulated, 4–6 s CPU on one core; README, Level 2 speed).
+// Each case is a full impact (~15 ms simulated, 5–8 s CPU on one core; README, Level 2 speed).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +28,7 @@ Level2Run run_scene(const std::string& name) {
   HingeRunOptions o;
   o.level = "2";
   o.integrator = HingeIntegrator::Ida;
-  o.relative_tolerance = 1e-3;
+  o.relative_tolerance = Level2Settings{}.default_relative_tolerance;  // the scene's default run
   return run_level2(scene, o);
 }
 
@@ -48,7 +48,7 @@ void expect_wrap_and_alternation(const Level2Run& run) {
   EXPECT_GT(r.crush_ratio[0], r.crush_ratio[1] + 0.2);
   const auto a = alternation(r.crush_ratio);
   EXPECT_GT(a.index, alternation_threshold) << "A1 = " << a.lag1;
-  EXPECT_LT(run.raw.energy_balance_error, 1e-3);
+  EXPECT_LT(run.raw.energy_balance_error, 5e-4);  // rtol 3e-4: measured 1.3–2.2e-4
   EXPECT_GT(run.raw.arrest_time_s, 0.0);
 }
 
@@ -62,9 +62,9 @@ void expect_thesis_hinges(const Level2Run& run) {
   const auto& ring1 = run.hinge_map[0];
   const auto& ring2 = run.hinge_map[1];
   // A and B on ring 1 as local ā peaks of at least a fifth of the ring's largest, as E below:
-  // with the calibrated ζ_b = 0.3 (Level2Settings) C's ā, the largest, grows from 0.67 to
-  // 0.99 rad on the welded chain (A 0.25, B 0.23 rad at ζ_b = 1, and 0.24 / 0.23 at 0.7), so
-  // A and B fall under the map's default 0.3 of it.
+  // with the calibrated ζ_b (0.3 in sessions 14–16, 0.15 since 17; Level2Settings) C's ā, the
+  // largest, grows from 0.67 to 0.99 rad on the welded chain (A 0.25, B 0.23 rad at ζ_b = 1,
+  // and 0.24 / 0.23 at 0.7), so A and B fall under the map's default 0.3 of it.
   const auto ring1_weak = hinge_map(run.raw.history.shapes.back(), run.raw.first_yield_time_s, 0.2)[0];
   EXPECT_TRUE(has_peak_near(ring1_weak, 0.0, hinge_tolerance_deg)) << "A on ring 1";
   EXPECT_TRUE(has_peak_near(ring1, 90.0, hinge_tolerance_deg)) << "C on ring 1";
@@ -103,5 +103,5 @@ TEST(PolygonTest30, PlatedNeitherWrapsNorAlternates) {
   for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
     EXPECT_FALSE(r.wrap_around[i]) << "ring " << i + 1 << " S = " << r.inverted_arc_m[i];
   EXPECT_LT(alternation(r.crush_ratio).index, alternation_threshold);
-  EXPECT_LT(run.raw.energy_balance_error, 1e-3);
+  EXPECT_LT(run.raw.energy_balance_error, 5e-4);  // rtol 3e-4: measured 1.3–2.2e-4
 }
