@@ -86,6 +86,13 @@ Agreement assess_agreement(const RunResult& fe, const RunResult& hinge, const Ag
     v.threshold = 0;
     v.pass = mismatches == 0;
     v.detail = fmt::format("FE wraps {}; hinge wraps {}", wrapped_rings_text(wf), wrapped_rings_text(wh));
+    // Where the flags differ, the inverted arcs that decided them (the flag is S > 0.25 πR,
+    // compare/measures.hpp): how far each model is from the threshold is what a reader weighs.
+    auto arc_mm = [](const RunResult& r, std::size_t i) {
+      return i < r.inverted_arc_m.size() ? fmt::format("{:.1f} mm", r.inverted_arc_m[i] * 1e3) : std::string("n/a");
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      if (wf[i] != wh[i]) v.detail += fmt::format("; ring {} inverted arc FE {}, hinge {}", i + 1, arc_mm(fe, i), arc_mm(hinge, i));
     a.verdicts.push_back(v);
   }
   {

@@ -80,6 +80,23 @@ TEST(Agreement, DifferentWrapRingsFail) {
   EXPECT_EQ(wrapped_rings_text(only1), "1");
 }
 
+// Where the flags differ the detail gives both inverted arcs (what decided the flags), and only
+// there; a run without per-ring arcs reads "n/a".
+TEST(Agreement, WrapDetailGivesTheInvertedArcsOfTheRingsThatDiffer) {
+  RunResult fe = synthetic(alternating, wraps_135);
+  RunResult hinge = synthetic(alternating, {true, false, false, false, true, false});
+  fe.inverted_arc_m = {0.042, 0.004, 0.0261, 0.0079, 0.0238, 0.004};
+  hinge.inverted_arc_m = {0.0418, 0.0032, 0.0161, 0.0, 0.0257, 0.0};
+  std::string detail;
+  for (const auto& v : assess_agreement(fe, hinge).verdicts)
+    if (v.key == "wrap_rings") detail = v.detail;
+  EXPECT_EQ(detail, "FE wraps 1,3,5; hinge wraps 1,5; ring 3 inverted arc FE 26.1 mm, hinge 16.1 mm");
+  hinge.inverted_arc_m.clear();
+  for (const auto& v : assess_agreement(fe, hinge).verdicts)
+    if (v.key == "wrap_rings") detail = v.detail;
+  EXPECT_NE(detail.find("ring 3 inverted arc FE 26.1 mm, hinge n/a"), std::string::npos) << detail;
+}
+
 TEST(Agreement, AlternatingAgainstMonotoneFails) {
   bool pass = true;
   const Agreement a = assess_agreement(synthetic(alternating, wraps_135), synthetic(monotone, wraps_135));
