@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -76,9 +77,9 @@ struct Level2Case {
   double energy_balance_error;
 };
 
-Level2Case run_thesis_scene(double velocity_m_s) {
-  Scene scene = load_scene(source_dir + "/data/scenes/thesis_dynamic.toml");
-  scene.impactor->velocity_m_s = velocity_m_s;
+Level2Case run_scene(const std::string& name, std::optional<double> velocity_m_s = std::nullopt) {
+  Scene scene = load_scene(source_dir + "/data/scenes/" + name + ".toml");
+  if (velocity_m_s) scene.impactor->velocity_m_s = *velocity_m_s;
   scene.outputs.fields = false;
   HingeRunOptions o;
   o.level = "2";
@@ -86,6 +87,8 @@ Level2Case run_thesis_scene(double velocity_m_s) {
   const Level2Run run = run_level2(scene, o, level2_settings(scene, o.integrator));
   return {run.result, run.raw.energy_balance_error};
 }
+
+Level2Case run_thesis_scene(double velocity_m_s) { return run_scene("thesis_dynamic", velocity_m_s); }
 
 const Verdict& verdict(const Agreement& a, const std::string& key) {
   for (const auto& v : a.verdicts)
@@ -170,4 +173,73 @@ TEST(Level2FeReference, ReferenceCarriesTheThesisVelocityTrend) {
     EXPECT_GT(alternation(reference.at(c).fe.crush_ratio).index, alternation_threshold) << c;
   for (const char* c : {"thesis_v35", "thesis_v37.5", "thesis_v40", "thesis_v45", "thesis_v50"})
     EXPECT_LT(alternation(reference.at(c).fe.crush_ratio).index, alternation_threshold) << c;
+}
+
+// Issue 7 (d) over the whole welded velocity study (the thesis chain, 48 × 2 FE at 15–50 m/s, ten
+// speeds). Away from the alternation transition every verdict the comparison reads passes:
+// the wrap flags ring by ring, the alternation pattern, the crush per ring within 0.15 and the
+// plastic work within 15 %. Through the transition Level 2 runs the FE's sequence of regimes
+// 1–2.5 m/s late (session 17: the alternation stops at 35.6 against 34.6 m/s, ring 4 wraps from
+// 36.5 against ≤ 35 m/s, ring 5's crush dips near 40 against 37.5 m/s; Level 2's dampers take
+// 4–5 % of the impact energy there, which is ≈ 1 m/s of impact speed): at the FE's samples
+// within 3.5 m/s of its transition speed (one 2.5 m/s sampling step beyond the 1 m/s offset:
+// 32.5, 35, 37.5 m/s) the verdicts may fail, and the test holds the crush per ring within 0.3
+// and the wrap flags to one ring. The transition speed itself is
+// AlternationStopsWithinOneAndAHalfMetresPerSecondOfTheFe.
+TEST(Level2FeReference, WeldedVelocityStudyAgreesAwayFromTheTransition) {
+  const auto reference = load_reference();
+  std::vector<std::pair<double, double>> fe_index;
+  for (const auto& [name, row] : reference)
+    if (row.thesis_scene) fe_index.emplace_back(row.velocity_m_s, alternation(row.fe.crush_ratio).index);
+  std::sort(fe_index.begin(), fe_index.end());
+  const auto fe_transition = transition_speed(fe_index);
+  ASSERT_TRUE(fe_transition.has_value());
+  int away = 0, near = 0;
+  for (const auto& [name, row] : reference) {
+    if (!row.thesis_scene) continue;
+    const Level2Case hinge = run_thesis_scene(row.velocity_m_s);
+    const Agreement a = assess_agreement(row.fe, hinge.result);
+    EXPECT_LT(hinge.energy_balance_error, 1e-3) << name;
+    if (std::abs(row.velocity_m_s - *fe_transition) > 3.5) {
+      ++away;
+      for (const char* key : {"wrap_rings", "alternation", "crush", "absorbed_energy"}) {
+        const Verdict& v = verdict(a, key);
+        EXPECT_TRUE(v.pass) << name << " " << key << ": " << v.value << " (" << v.detail << ")";
+      }
+    } else {
+      ++near;
+      EXPECT_LE(verdict(a, "crush").value, 0.3) << name << ": " << verdict(a, "crush").detail;
+      EXPECT_LE(verdict(a, "wrap_rings").value, 1.0) << name << ": " << verdict(a, "wrap_rings").detail;
+      EXPECT_TRUE(verdict(a, "absorbed_energy").pass) << name << ": " << verdict(a, "absorbed_energy").detail;
+    }
+  }
+  EXPECT_EQ(away, 7);  // 15, 20, 25, 30, 40, 45, 50 m/s
+  EXPECT_EQ(near, 3);  // 32.5, 35, 37.5 m/s
+}
+
+// Test 30 (27.7 m/s, 0.257 kg) in its three joint variants against the 48 × 2 FE. Welded and
+// plated: every verdict passes. Free: the crush, the alternation and the plastic work agree, and
+// Level 2 wraps rings 1, 3 and 5 as in the welded chain (issue 7 (d) asks ring 1 to wrap in the
+// free chain too; the experiments' free chains wrap, thesis §2.4), where the FE wraps ring 5
+// only: its ring 1 sits at the threshold (S 19.3 mm against 0.25πR = 19.3 mm), ring 3 at 16.4 mm,
+// and refined to 72 × 2 both move away from it (15.8 and 10.7 mm; README "FE against the hinge
+// model", session 17). That difference is the one this test leaves to the wrap verdict's detail.
+TEST(Level2FeReference, Test30ChainsAgreeButTheFreeChainsWrapFlags) {
+  const auto reference = load_reference();
+  for (const char* name : {"test30_welded", "test30_plates", "test30_free"}) {
+    const Level2Case hinge = run_scene(name);
+    const Agreement a = assess_agreement(reference.at(name).fe, hinge.result);
+    EXPECT_LT(hinge.energy_balance_error, 1e-3) << name;
+    for (const char* key : {"alternation", "crush", "absorbed_energy"}) {
+      const Verdict& v = verdict(a, key);
+      EXPECT_TRUE(v.pass) << name << " " << key << ": " << v.value << " (" << v.detail << ")";
+    }
+    const Verdict& w = verdict(a, "wrap_rings");
+    if (std::string(name) == "test30_free") {
+      EXPECT_TRUE(hinge.result.wrap_around[0]) << "ring 1 wraps ring 2 in the free chain";
+      EXPECT_LE(w.value, 2.0) << w.detail;
+    } else {
+      EXPECT_TRUE(w.pass) << name << ": " << w.detail;
+    }
+  }
 }
