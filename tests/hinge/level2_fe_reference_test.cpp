@@ -40,8 +40,8 @@ struct ReferenceRow {
   bool thesis_scene = false;
 };
 
-std::map<std::string, ReferenceRow> load_reference() {
-  std::ifstream in(source_dir + "/data/reference/fe_explicit_48x2.csv");
+std::map<std::string, ReferenceRow> load_reference(const std::string& file = "fe_explicit_48x2.csv") {
+  std::ifstream in(source_dir + "/data/reference/" + file);
   if (!in) throw std::runtime_error("cannot open the FE reference");
   std::string line;
   std::vector<std::string> header;
@@ -242,4 +242,22 @@ TEST(Level2FeReference, Test30ChainsAgreeButTheFreeChainsWrapFlags) {
       EXPECT_TRUE(w.pass) << name << ": " << w.detail;
     }
   }
+}
+
+// The reference is converged where the models disagree: the three cases re-run at 72 × 2
+// (data/reference/fe_explicit_72x2.csv) keep the 48 × 2 crush per ring within 0.05 and its
+// plastic work within 0.2 %, so the Level 2 differences there (0.27 in ring 5's crush at
+// 37.5 m/s; rings 1 and 3 of the free chain, whose FE inverted arcs move away from the wrap
+// threshold on the finer mesh) are the models', not the reference mesh's. The wrap flags that
+// sit within ~1 mm of the threshold may cross it (35 m/s ring 5: S 19.0 → 20.1 mm).
+TEST(Level2FeReference, ReferenceMeshIsConvergedWhereTheModelsDisagree) {
+  const auto coarse = load_reference();
+  const auto fine = load_reference("fe_explicit_72x2.csv");
+  ASSERT_EQ(fine.size(), 3u);
+  for (const auto& [name, row] : fine) {
+    const auto& c = coarse.at(name).fe;
+    for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(row.fe.crush_ratio[i], c.crush_ratio[i], 0.05) << name << " ring " << i + 1;
+    EXPECT_NEAR(row.fe.plastic_j[0] / c.plastic_j[0], 1.0, 2e-3) << name;
+  }
+  for (int ring : {0, 2}) EXPECT_FALSE(fine.at("test30_free").fe.wrap_around[ring]) << "ring " << ring + 1;
 }
