@@ -194,6 +194,7 @@ class DynamicRun {
     for (const auto& c : model_.element_fields()) {
       f.mises_pa.push_back(c.mises);
       f.peeq.push_back(c.peeq);
+      f.stress_pa.insert(f.stress_pa.end(), {c.sxx, c.syy, c.sxy});
     }
     f.contact_pressure_pa = model_.contact_pressure();
     return f;

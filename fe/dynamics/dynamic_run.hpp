@@ -59,6 +59,7 @@ struct DynamicFrame {
   double time_s = 0;
   Eigen::VectorXd displacement;              // 2 per node
   std::vector<double> mises_pa, peeq;        // per element
+  std::vector<double> stress_pa;             // per element: xx, yy, xy (point average, global axes)
   std::vector<double> contact_pressure_pa;   // per node
 };
 

@@ -172,9 +172,15 @@ Cps8Fields cps8_fields(const PointState* states, int points) {
   for (int i = 0; i < points; ++i) {
     out.mises += mises(states[i].stress);
     out.peeq += states[i].peeq;
+    out.sxx += states[i].stress(0);
+    out.syy += states[i].stress(1);
+    out.sxy += states[i].stress(2);
   }
   out.mises /= points;
   out.peeq /= points;
+  out.sxx /= points;
+  out.syy /= points;
+  out.sxy /= points;
   return out;
 }
 

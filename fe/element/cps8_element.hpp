@@ -92,6 +92,7 @@ inline Eigen::Matrix2d point_stress(const Eigen::Vector3d& stress, const Cps8Geo
 // Point-averaged von Mises (Cauchy) stress and PEEQ of committed states (field output).
 struct Cps8Fields {
   double mises = 0, peeq = 0;
+  double sxx = 0, syy = 0, sxy = 0;  // Cauchy stress, average of the points (global axes)
 };
 Cps8Fields cps8_fields(const PointState* states, int points);
 

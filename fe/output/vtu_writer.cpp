@@ -22,6 +22,7 @@ struct GridView {
   const std::vector<double>& peeq;               // per element
   const std::vector<double>& mises;              // per element
   const std::vector<int>* element_ring = nullptr;
+  const std::vector<double>* stress = nullptr;   // per element xx, yy, xy (optional)
 };
 
 void write_grid(const std::filesystem::path& file, const GridView& g) {
@@ -77,6 +78,14 @@ void write_grid(const std::filesystem::path& file, const GridView& g) {
     for (int r : *g.element_ring) o << r + 1 << '\n';  // 1-based, as the rings are named
     o << "</DataArray>\n";
   }
+  if (g.stress && g.stress->size() == 3 * nc) {
+    o << "<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t c = 0; c < nc; ++c) {
+      for (int k = 0; k < 3; ++k) check_finite((*g.stress)[3 * c + static_cast<std::size_t>(k)], "stress");
+      o << fmt::format("{:.6g} {:.6g} {:.6g}\n", (*g.stress)[3 * c], (*g.stress)[3 * c + 1], (*g.stress)[3 * c + 2]);
+    }
+    o << "</DataArray>\n";
+  }
   o << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   if (!o) throw std::runtime_error("error writing " + file.string());
 }
@@ -90,7 +99,7 @@ void write_vtu(const std::filesystem::path& file, const ChainMesh& mesh, const D
   if (mesh.element_ring.size() != mesh.elements.size())
     throw std::invalid_argument("vtu output: the chain mesh has no ring for every element");
   write_grid(file, {mesh.nodes, mesh.elements, fr.displacement, fr.contact_pressure_pa, fr.peeq, fr.mises_pa,
-                    &mesh.element_ring});
+                    &mesh.element_ring, &fr.stress_pa});
 }
 
 void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& entries) {

@@ -159,6 +159,7 @@ fe::DynamicResult synthetic_result(const Scene& s, const std::vector<double>& cr
     fr.displacement = f == 0 ? Eigen::VectorXd::Zero(2 * nn) : r.final_displacement;
     fr.mises_pa.assign(m.elements.size(), 1e8 * f);
     fr.peeq.assign(m.elements.size(), 0.01 * f);
+    fr.stress_pa.assign(3 * m.elements.size(), -5e7 * f);
     fr.contact_pressure_pa.assign(m.nodes.size(), 0.0);
     r.frames.push_back(fr);
   }
@@ -419,6 +420,7 @@ TEST(FeDynamicOutputs, ResultsDirectoryIsComplete) {
   const std::string vtu = read_text(dir / "frames/frame_0001.vtu");
   EXPECT_NE(vtu.find("NumberOfCells=\"32\""), std::string::npos);
   EXPECT_NE(vtu.find("Name=\"ring\""), std::string::npos);
+  EXPECT_NE(vtu.find("Name=\"stress\" NumberOfComponents=\"3\""), std::string::npos);  // xx, yy, xy per element
   EXPECT_NE(vtu.find("</VTKFile>"), std::string::npos);
   EXPECT_NE(read_text(dir / "series.pvd").find("frame_0001.vtu"), std::string::npos);
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
