@@ -155,7 +155,7 @@ struct HingeSettings {
   // membrane bars and the hinge rotations, each a fraction of its element's critical damping).
   // A numerical device: the FE dissipates ≤ 0.16 % of the impact energy outside plasticity, and
   // what the dampers take the FE puts into plastic work (README "FE against the hinge model",
-  // sessions 14, 16 and 17). Unset: Level2Settings' defaults (ζ_m 1, ζ_b 0.15).
+  // sessions 14, 16 and 18). Unset: Level2Settings' defaults (ζ_m 1, ζ_b 0.15).
   std::optional<double> membrane_damping_ratio;
   std::optional<double> hinge_damping_ratio;
   // Level 2 hinge flow law λ̇ = (2 l_h/t) D ⟨|M|/M_y − 1⟩^q (compare/hinge_run_2d.hpp

@@ -28,7 +28,7 @@
 // stable step is that of the undamped stiffness (PolygonChain::stable_step leaves the
 // dampers out): ≈ 3× the explicit dampers' step at ζ_m = ζ_b = 1, the defaults when it was
 // measured (the ringcrush tool's are Level2Settings', compare/hinge_run_2d.hpp: ζ_m = 1 and,
-// since session 17, ζ_b = 0.15; PolygonChainInput's are 0). The damper work is booked as the work
+// since session 18, ζ_b = 0.15; PolygonChainInput's are 0). The damper work is booked as the work
 // of the damper forces in the two kicks, Δt/4 [d_n·(v_n + v_{n+½}) + d_{n+1}·(v_{n+½} + v_{n+1})]
 // with d = C v: exactly their share of the kinetic-energy change of the step, so the
 // balance closes as with the explicit dampers (to the leapfrog's O(Δt²) on the stiffness).

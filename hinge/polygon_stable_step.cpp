@@ -11,7 +11,7 @@
 // central-difference limit with damping taken at the half-step velocity (Belytschko, Liu &
 // Moran, Nonlinear Finite Elements, §6.3). The Kelvin–Voigt dampers (ratios ζ_m, ζ_b of the
 // shortest modes, PolygonChainInput, whose own default is 0; the ringcrush tool's defaults are
-// Level2Settings', compare/hinge_run_2d.hpp: ζ_m = 1 and, since session 17, ζ_b = 0.15) put
+// Level2Settings', compare/hinge_run_2d.hpp: ζ_m = 1 and, since session 18, ζ_b = 0.15) put
 // ξ ≳ 1 into every node, mostly through the membrane bars, and so shorten the step by the
 // factor √(1 + ξ²) − ξ above — unless the driver applies them implicitly
 // (set_implicit_ring_dampers): then C_i holds the contact and mass damping only, and the

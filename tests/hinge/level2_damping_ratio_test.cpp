@@ -19,7 +19,7 @@ constexpr HingeIntegrator kIntegrators[] = {HingeIntegrator::Ida, HingeIntegrato
                                             HingeIntegrator::CentralDifference};
 }  // namespace
 
-// ... the same on every integrator since session 17 (the central difference had its own
+// ... the same on every integrator since session 18 (the central difference had its own
 // 0.15 in session 16, IDA and Odeint 0.3).
 TEST(Level2DampingRatio, UnsetIsTheDefault) {
   const Scene scene = test30_welded();

@@ -179,7 +179,7 @@ TEST(Level2FeReference, ReferenceCarriesTheThesisVelocityTrend) {
 // speeds). Away from the alternation transition every verdict the comparison reads passes:
 // the wrap flags ring by ring, the alternation pattern, the crush per ring within 0.15 and the
 // plastic work within 15 %. Through the transition Level 2 runs the FE's sequence of regimes
-// 1–2.5 m/s late (session 17: the alternation stops at 35.6 against 34.6 m/s, ring 4 wraps from
+// 1–2.5 m/s late (session 18: the alternation stops at 35.6 against 34.6 m/s, ring 4 wraps from
 // 36.5 against ≤ 35 m/s, ring 5's crush dips near 40 against 37.5 m/s; Level 2's dampers take
 // 4–5 % of the impact energy there, which is ≈ 1 m/s of impact speed): at the FE's samples
 // within 3.5 m/s of its transition speed (one 2.5 m/s sampling step beyond the 1 m/s offset:
@@ -223,7 +223,7 @@ TEST(Level2FeReference, WeldedVelocityStudyAgreesAwayFromTheTransition) {
 // free chain too; the experiments' free chains wrap, thesis §2.4), where the FE wraps ring 5
 // only: its ring 1 sits at the threshold (S 19.3 mm against 0.25πR = 19.3 mm), ring 3 at 16.4 mm,
 // and refined to 72 × 2 both move away from it (15.8 and 10.7 mm; README "FE against the hinge
-// model", session 17). That difference is the one this test leaves to the wrap verdict's detail.
+// model", session 18). That difference is the one this test leaves to the wrap verdict's detail.
 TEST(Level2FeReference, Test30ChainsAgreeButTheFreeChainsWrapFlags) {
   const auto reference = load_reference();
   for (const char* name : {"test30_welded", "test30_plates", "test30_free"}) {

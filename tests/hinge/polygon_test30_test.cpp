@@ -62,7 +62,7 @@ void expect_thesis_hinges(const Level2Run& run) {
   const auto& ring1 = run.hinge_map[0];
   const auto& ring2 = run.hinge_map[1];
   // A and B on ring 1 as local ā peaks of at least a fifth of the ring's largest, as E below:
-  // with the calibrated ζ_b (0.3 in sessions 14–16, 0.15 since 17; Level2Settings) C's ā, the
+  // with the calibrated ζ_b (0.3 in sessions 14–16, 0.15 since 18; Level2Settings) C's ā, the
   // largest, grows from 0.67 to 0.99 rad on the welded chain (A 0.25, B 0.23 rad at ζ_b = 1,
   // and 0.24 / 0.23 at 0.7), so A and B fall under the map's default 0.3 of it.
   const auto ring1_weak = hinge_map(run.raw.history.shapes.back(), run.raw.first_yield_time_s, 0.2)[0];
