@@ -219,6 +219,7 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
     out.wrap_around.push_back(w.wrap_around);
     out.wrapped_angle_deg.push_back(w.wrapped_angle_deg);
     out.inverted_arc_m.push_back(w.inverted_arc_m);
+    out.inverted_turning_deg.push_back(w.inverted_turning_deg);
     out.mode.push_back(deformation_mode(c, w.wrap_around));
   }
   // Final outlines for reports (outer surface, x ≥ 0 half of a half model).
@@ -303,7 +304,7 @@ RunResult fe_dynamic_run_result(const Scene& s, const fe::DynamicResult& r) {
 CsvTable rings_table(const Scene& s, const RunResult& run) {
   CsvTable t;
   t.columns = {"ring",           "crush_ratio",      "crush_m",         "wrapped_angle_deg", "inverted_arc_m",
-               "wrap_around",    "top_height_ratio", "bottom_height_ratio", "max_peeq"};
+               "wrap_around",    "top_height_ratio", "bottom_height_ratio", "max_peeq", "inverted_turning_deg"};
   auto per_ring = [&](const char* key) {
     return run.extra.contains(key) ? run.extra[key].get<std::vector<double>>() : std::vector<double>{};
   };
@@ -313,7 +314,7 @@ CsvTable rings_table(const Scene& s, const RunResult& run) {
   for (std::size_t i = 0; i < run.crush_ratio.size(); ++i)
     t.add_row({static_cast<double>(i + 1), run.crush_ratio[i], run.crush_ratio[i] * s.rings.outer_diameter_m,
                run.wrapped_angle_deg[i], run.inverted_arc_m[i], run.wrap_around[i] ? 1.0 : 0.0, at(top, i),
-               at(bottom, i), at(peeq, i)});
+               at(bottom, i), at(peeq, i), at(run.inverted_turning_deg, i)});
   return t;
 }
 

@@ -39,6 +39,7 @@ void fill_final_state(RunResult& r, const std::vector<double>& final_crush, cons
     r.wrap_around.push_back(false);  // 1-D levels cannot wrap (THEORY §4.2)
     r.wrapped_angle_deg.push_back(0.0);
     r.inverted_arc_m.push_back(0.0);
+    r.inverted_turning_deg.push_back(0.0);
     r.mode.push_back(final_mode(c, law));
   }
 }

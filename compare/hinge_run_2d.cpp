@@ -231,17 +231,20 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
     bottom_height.push_back(hh.bottom);
     const bool below = ring + 1 < final_shapes.size() && scene.joints.type != JointType::Plates;
     WrapMeasure w;
-    w.inverted_arc_m = inverted_arc_length(final_shapes[ring]);
+    const InvertedArc arc = inverted_arc(final_shapes[ring]);
+    w.inverted_arc_m = arc.length_m;
+    w.inverted_turning_deg = arc.turning_deg;
     if (below) w.wrapped_angle_deg = wrapped_angle_deg(arrest_shapes[ring], arrest_shapes[ring + 1], 1.1 * t);
-    // Decided on S (compare/measures wrap_flag); in free chains the wrapped arc of ring i
-    // bridges over the apex of ring i+1 (Test 30: a 4.5 mm gap on the axis, contact at
+    // Decided on S and T (compare/measures wrap_flag); in free chains the wrapped arc of ring
+    // i bridges over the apex of ring i+1 (Test 30: a 4.5 mm gap on the axis, contact at
     // 37–45°), where W, contiguous from the apex, reads 0.
-    w.wrap_around = below && wrap_flag(w.inverted_arc_m, R, thresholds);  // measures.hpp measure_wrap
+    w.wrap_around = below && wrap_flag(arc, R, thresholds);  // measures.hpp measure_wrap
     const double c = crush_ratio(final_shapes[ring], D);
     r.crush_ratio.push_back(c);
     r.wrap_around.push_back(w.wrap_around);
     r.wrapped_angle_deg.push_back(w.wrapped_angle_deg);
     r.inverted_arc_m.push_back(w.inverted_arc_m);
+    r.inverted_turning_deg.push_back(w.inverted_turning_deg);
     r.mode.push_back(deformation_mode(c, w.wrap_around));
   }
 

@@ -148,6 +148,7 @@ RunResult run_hinge_level3(const Scene& scene, const HingeRunOptions& o, const L
     r.wrap_around.push_back(m.wrap_around);
     r.wrapped_angle_deg.push_back(m.wrapped_angle_deg);
     r.inverted_arc_m.push_back(m.inverted_arc_m);
+    r.inverted_turning_deg.push_back(m.inverted_turning_deg);
     r.mode.push_back(rr.crush_m < 0.02 * ring.outer_diameter_m ? "intact" : hinge::to_string(rr.mode));
     nlohmann::json hs = nlohmann::json::array();
     for (const auto& hg : rr.hinges)

@@ -84,7 +84,7 @@ double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double 
   return std::min(360.0, total * 180.0 / pi);
 }
 
-double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
+InvertedArc inverted_arc(const RingShape& ring, double turning_tolerance) {
   require_shape(ring);
   const std::size_t n = ring.points.size();
   const bool closed = !ring.half;
@@ -113,7 +113,7 @@ double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
     total += share(j) * turning[j];
   }
   const double orientation = total >= 0 ? 1.0 : -1.0;
-  double length = 0.0;
+  double length = 0.0, turned = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
     const double theta = std::abs(std::remainder(ring.material_angle[j], 2 * pi));
     if (theta < 0.5 * pi) continue;  // upper half
@@ -121,23 +121,32 @@ double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
       const double before = (ring.points[j] - previous(j)).norm();
       const double after = (next(j) - ring.points[j]).norm();
       length += share(j) * 0.5 * (before + after);
+      turned += share(j) * std::abs(turning[j]);
     }
   }
-  return ring.half ? 2 * length : length;
+  const double whole = ring.half ? 2.0 : 1.0;
+  return {whole * length, whole * turned * 180.0 / pi};
+}
+
+double inverted_arc_length(const RingShape& ring, double turning_tolerance) {
+  return inverted_arc(ring, turning_tolerance).length_m;
 }
 
 WrapMeasure measure_wrap(const RingShape& ring, const RingShape* lower, double mean_radius,
                          double wall_thickness, const WrapThresholds& th) {
   WrapMeasure m;
-  m.inverted_arc_m = inverted_arc_length(ring);
+  const InvertedArc arc = inverted_arc(ring);
+  m.inverted_arc_m = arc.length_m;
+  m.inverted_turning_deg = arc.turning_deg;
   if (!lower) return m;  // nothing to wrap around (measures.hpp)
   m.wrapped_angle_deg = wrapped_angle_deg(ring, *lower, 1.1 * wall_thickness);
-  m.wrap_around = wrap_flag(m.inverted_arc_m, mean_radius, th);
+  m.wrap_around = wrap_flag(arc, mean_radius, th);
   return m;
 }
 
-bool wrap_flag(double inverted_arc_m, double mean_radius, const WrapThresholds& th) {
-  return inverted_arc_m > th.min_inverted_arc_fraction * pi * mean_radius;
+bool wrap_flag(const InvertedArc& arc, double mean_radius, const WrapThresholds& th) {
+  return arc.length_m > th.min_inverted_arc_fraction * pi * mean_radius ||
+         arc.turning_deg > th.min_inverted_turning_deg;
 }
 
 Alternation alternation(const std::vector<double>& c, double tol) {

@@ -35,29 +35,44 @@ double crush_ratio(const RingShape& ring, double outer_diameter);
 // ring's extent is doubled), in [0, 360].
 double wrapped_angle_deg(const RingShape& upper, const RingShape& lower, double cap_distance);
 
-// Inverted arc S (m): length of the ring's lower half (θ ∈ [π/2, 3π/2]) whose curvature
-// has reversed sign, i.e. whose turning angle at a point is opposite to the ring's overall
-// turning by more than `turning_tolerance` rad (default: a tenth of 2π/N, N points per
-// whole ring). Whole-ring length (doubled for a half ring; a half ring's end points A and B,
-// on the symmetry axis, turn against their mirrored neighbour and count once).
+// Inverted arc of the ring's lower half (θ ∈ [π/2, 3π/2]): the points whose curvature has
+// reversed sign, i.e. whose turning angle is opposite to the ring's overall turning by more
+// than `turning_tolerance` rad (default: a tenth of 2π/N, N points per whole ring).
+//   length S (m): the arc those points span;
+//   turning T (deg): how far they turn back, Σ |turning| over them (the integral of the
+//   reversed curvature over the arc, ∫⟨−κ⟩ ds).
+// Whole-ring values (doubled for a half ring; a half ring's end points A and B, on the
+// symmetry axis, turn against their mirrored neighbour and count once).
+struct InvertedArc {
+  double length_m = 0.0;
+  double turning_deg = 0.0;
+};
+InvertedArc inverted_arc(const RingShape& ring, double turning_tolerance = -1.0);
 double inverted_arc_length(const RingShape& ring, double turning_tolerance = -1.0);
 
-// The wrap-around flag is decided on the inverted arc S alone (issue "Hinge model II" item 3,
-// THEORY §4.7): the wrapped angle W cannot tell a wrap from two flattened rings lying on each
-// other, and in free chains a wrapped arc can bridge the next ring's apex with a small gap so
-// that W, contiguous from the apex, reads 0. W is reported as supporting evidence.
-// Threshold: S > 0.25 π R. THEORY §4.6 proposed 0.1 π R; on the Level 2 Test 30 runs the
-// wrapping rings have S ≥ 22.5 mm and all others ≤ 16.1 mm (kinks of plated rings), so
-// 0.25 π R = 19.3 mm separates them. To be re-calibrated on the FE run at 30 m/s.
+// The wrap-around flag (issue "Hinge model II" item 3, THEORY §4.6–4.7): a quarter of the lower
+// half reversed, in length or in angle — S > 0.25 π R or T > 45° (a quarter of the lower half's
+// 180° of turning). The wrapped angle W cannot tell a wrap from two flattened rings lying on
+// each other, and in free chains a wrapped arc can bridge the next ring's apex with a small gap
+// so that W, contiguous from the apex, reads 0: W is reported as supporting evidence only.
+// Why both: S alone (sessions 6–17) reads a reversal concentrated in a fold short, and the
+// shorter the finer the mesh: the FE's free Test 30 ring 1 turns its lower half back by 75°,
+// as much as the welded ring 1 (77°), but two thirds of it in one fold at B, so S was 19.3 mm
+// on 48 × 2 and 15.8 mm on 72 × 2 while T stayed at 75–79° (data/fold_diagnosis/, README
+// "FE against the hinge model", session 18). T alone misses the wide, gentle reversals of rings
+// flattened at 40–50 m/s (S 25–32 mm at T 13–20° in Level 2). On the 13 FE reference cases
+// and their Level 2 runs every ring below both thresholds has T ≤ 34° and S ≤ 19.3 mm.
 struct WrapThresholds {
   double min_inverted_arc_fraction = 0.25;
+  double min_inverted_turning_deg = 45.0;
 };
 
-bool wrap_flag(double inverted_arc_m, double mean_radius, const WrapThresholds& thresholds = {});
+bool wrap_flag(const InvertedArc& arc, double mean_radius, const WrapThresholds& thresholds = {});
 
 struct WrapMeasure {
   double wrapped_angle_deg = 0.0;
   double inverted_arc_m = 0.0;
+  double inverted_turning_deg = 0.0;
   bool wrap_around = false;
 };
 

@@ -115,6 +115,7 @@ nlohmann::json summary_json(const RunResult& r, const Scene& scene) {
     j["wrap_around"] = r.wrap_around;
     j["wrapped_angle_deg"] = r.wrapped_angle_deg;
     j["inverted_arc_m"] = r.inverted_arc_m;
+    j["inverted_turning_deg"] = r.inverted_turning_deg;
     j["mode"] = r.mode;
     j["alternation_index"] = alt.index;
     j["alternation"] = {{"A1_lag1", alt.lag1},

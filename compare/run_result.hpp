@@ -57,6 +57,7 @@ struct RunResult {
   std::vector<bool> wrap_around;
   std::vector<double> wrapped_angle_deg;
   std::vector<double> inverted_arc_m;
+  std::vector<double> inverted_turning_deg;  // compare/measures inverted_arc: T of the lower half
   std::vector<std::string> mode;            // "flattened", "wrapped", "intact", ...
   // Final outline of each ring in the chain's frame (m): the points a model has (FE outer
   // surface nodes, polygon nodes), ordered around the ring; a half model's x ≥ 0 half only

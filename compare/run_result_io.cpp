@@ -31,6 +31,7 @@ constexpr VectorField vector_fields[] = {
     {"crush_ratio", &RunResult::crush_ratio},
     {"wrapped_angle_deg", &RunResult::wrapped_angle_deg},
     {"inverted_arc_m", &RunResult::inverted_arc_m},
+    {"inverted_turning_deg", &RunResult::inverted_turning_deg},
 };
 
 void require_finite(const std::vector<double>& v, const char* name) {

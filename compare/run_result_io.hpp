@@ -13,7 +13,8 @@
 
 namespace ringcrush::compare {
 
-inline constexpr int run_result_format_version = 1;
+// 2 (session 18): inverted_turning_deg per ring.
+inline constexpr int run_result_format_version = 2;
 
 nlohmann::json run_result_to_json(const RunResult& r);
 // Throws std::runtime_error naming the missing or malformed field.

@@ -414,7 +414,7 @@ TEST(FeDynamicOutputs, ResultsDirectoryIsComplete) {
   EXPECT_EQ(csv_rows(dir / "history.csv"), 5u);
   EXPECT_EQ(csv_header(dir / "rings.csv"),
             (std::vector<std::string>{"ring", "crush_ratio", "crush_m", "wrapped_angle_deg", "inverted_arc_m",
-                                      "wrap_around", "top_height_ratio", "bottom_height_ratio", "max_peeq"}));
+                                      "wrap_around", "top_height_ratio", "bottom_height_ratio", "max_peeq", "inverted_turning_deg"}));
   EXPECT_EQ(csv_rows(dir / "rings.csv"), 4u);
 
   const std::string vtu = read_text(dir / "frames/frame_0001.vtu");

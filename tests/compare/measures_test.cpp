@@ -139,9 +139,12 @@ TEST(Measures, WrappedRingIsFlagged) {
   EXPECT_NEAR(w, 120.0, 4.0);
   const auto m = measure_wrap(ring1, &ring2, R, t);
   EXPECT_TRUE(m.wrap_around);
-  // The flag is decided on S: just below and above 0.25 π R.
-  EXPECT_FALSE(wrap_flag(0.24 * pi * R, R));
-  EXPECT_TRUE(wrap_flag(0.26 * pi * R, R));
+  // The flag is decided on S or on T: just below and above 0.25 π R and 45°.
+  EXPECT_FALSE(wrap_flag({0.24 * pi * R, 44.0}, R));
+  EXPECT_TRUE(wrap_flag({0.26 * pi * R, 0.0}, R));
+  EXPECT_TRUE(wrap_flag({0.0, 46.0}, R));
+  // The wrap arc turns back by 2 ψmax (120°), less the junctions.
+  EXPECT_NEAR(m.inverted_turning_deg, 120.0, 0.08 * 120.0);
   // Ring 2 itself is intact: no inversion, no wrap over anything.
   EXPECT_FALSE(measure_wrap(ring2, nullptr, R, t).wrap_around);
   // Ring 1's inverted arc with no ring below it (a plate or the target under it): no wrap.
@@ -160,6 +163,7 @@ TEST(Measures, FlattenedPairIsNotAWrap) {
   const auto m = measure_wrap(upper, &lower, R, t);
   EXPECT_GT(m.wrapped_angle_deg, 100.0);
   EXPECT_LT(m.inverted_arc_m, 1e-9);
+  EXPECT_LT(m.inverted_turning_deg, 1e-6);
   EXPECT_FALSE(m.wrap_around);
 }
 
@@ -280,5 +284,43 @@ TEST(Measures, BothModelsReadOneWrapAlike) {
     EXPECT_LT(fe, fe_mean);
     EXPECT_GT(fe, 0.9 * fe_mean);
     EXPECT_NEAR(fe, level2, 0.03 * level2);
+  }
+}
+
+// A ring whose lower half turns back in one fold at B (the FE's free Test 30 ring 1, session 18:
+// two straight legs from the arc at ±α about B up to an apex where they meet at 60°): the fold
+// turns back by its 60° whatever the sampling, while the inverted arc S is the fold's one
+// point spacing and shrinks as the points multiply. T flags the wrap at every sampling; S at none.
+namespace {
+RingShape folded(int n, double alpha, double fold) {
+  RingShape s = circle(0.0, R, n);
+  const Vector2d p(R * std::sin(pi - alpha), R * std::cos(pi - alpha));  // the right leg's foot
+  const Vector2d apex(0.0, p.y() + p.x() * std::tan(0.5 * fold));          // legs meet at `fold`
+  for (int i = 0; i < n; ++i) {
+    const double from_b = std::remainder(s.material_angle[i] - pi, 2 * pi);  // −α … α
+    if (std::abs(from_b) >= alpha) continue;
+    const double u = 1.0 - std::abs(from_b) / alpha;  // 0 at the foot, 1 at the apex
+    Vector2d q = p + u * (apex - p);
+    if (from_b > 0) q.x() = -q.x();  // past B: the left leg
+    s.points[i] = q;
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Measures, FoldAtTheBottomTurnsBackWhateverTheSampling) {
+  const double alpha = pi / 6, fold = pi / 3;
+  const double fold_deg = fold * 180 / pi;
+  double previous_s = 1e9;
+  for (int n : {96, 192, 384}) {
+    const auto ring = folded(n, alpha, fold);
+    const auto ring2 = circle(-D, R, n);
+    const InvertedArc arc = inverted_arc(ring);
+    EXPECT_NEAR(arc.turning_deg, fold_deg, 1e-6) << n << " points";
+    EXPECT_LT(arc.length_m, 0.25 * pi * R) << n;      // S alone would not flag it ...
+    EXPECT_LT(arc.length_m, 0.6 * previous_s) << n;   // ... and less so the finer the sampling
+    previous_s = arc.length_m;
+    EXPECT_TRUE(measure_wrap(ring, &ring2, R, t).wrap_around) << n;
+    EXPECT_NEAR(inverted_arc(half_of(ring)).turning_deg, arc.turning_deg, 1e-9) << n;
   }
 }
