@@ -122,12 +122,12 @@ void print_dynamic_result(const Scene& s, const fe::DynamicResult& r, const RunR
                ms.element_mass_kg > 0 ? 100 * ms.added_mass_kg / ms.element_mass_kg : 0.0, ms.element_mass_kg,
                impactor > 0 ? ms.added_mass_kg / impactor : 0.0, impactor, st.steps_below_mass_scaling_target);
   }
-  fmt::print("{:>5} {:>8} {:>9} {:>11} {:>11} {:>5} {:>10} {:>9}\n", "ring", "c=d/D", "crush_mm", "wrapped_deg",
-             "inv_arc_mm", "wrap", "mode", "max_PEEQ");
+  fmt::print("{:>5} {:>8} {:>9} {:>11} {:>11} {:>12} {:>5} {:>10} {:>9}\n", "ring", "c=d/D", "crush_mm", "wrapped_deg",
+             "inv_arc_mm", "inv_turn_deg", "wrap", "mode", "max_PEEQ");
   for (std::size_t i = 0; i < run.crush_ratio.size(); ++i)
-    fmt::print("{:>5} {:>8.3f} {:>9.2f} {:>11.1f} {:>11.2f} {:>5} {:>10} {:>9.3f}\n", i + 1, run.crush_ratio[i],
+    fmt::print("{:>5} {:>8.3f} {:>9.2f} {:>11.1f} {:>11.2f} {:>12.1f} {:>5} {:>10} {:>9.3f}\n", i + 1, run.crush_ratio[i],
                1e3 * run.crush_ratio[i] * s.rings.outer_diameter_m, run.wrapped_angle_deg[i], 1e3 * run.inverted_arc_m[i],
-               run.wrap_around[i] ? "yes" : "no", run.mode[i],
+               run.inverted_turning_deg[i], run.wrap_around[i] ? "yes" : "no", run.mode[i],
                i < r.max_peeq_per_ring.size() ? r.max_peeq_per_ring[i] : 0.0);
   const auto alt = alternation(run.crush_ratio);
   fmt::print("alternation index {:.3f} (A1 {:.3f}, sign changes {:.2f}; threshold {:g}: {})\n", alt.index, alt.lag1,

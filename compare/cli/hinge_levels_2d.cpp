@@ -181,8 +181,9 @@ void bench(const BenchOptions& o) {
   fmt::print("alternation index {:.3f} (A1 {:.3f}), arrest {:.3f} ms\n", alt.index, alt.lag1,
              last.raw.arrest_time_s * 1e3);
   for (std::size_t r = 0; r < last.result.crush_ratio.size(); ++r)
-    fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", r + 1, last.result.crush_ratio[r],
-               last.result.wrapped_angle_deg[r], last.result.inverted_arc_m[r] * 1e3, last.result.mode[r]);
+    fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  T = {:5.1f} deg  {}\n", r + 1,
+               last.result.crush_ratio[r], last.result.wrapped_angle_deg[r], last.result.inverted_arc_m[r] * 1e3,
+               last.result.inverted_turning_deg[r], last.result.mode[r]);
 }
 
 void add_bench_command(CLI::App& app) {
@@ -238,8 +239,8 @@ void shapes(const ShapesOptions& o) {
   const auto run = run_level2(scene, opt, level2_settings(scene, opt.integrator));
   const auto& r = run.result;
   for (std::size_t i = 0; i < r.crush_ratio.size(); ++i)
-    fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  {}\n", i + 1, r.crush_ratio[i],
-               r.wrapped_angle_deg[i], r.inverted_arc_m[i] * 1e3, r.mode[i]);
+    fmt::print("ring {}: c = {:.3f}  W = {:5.1f} deg  S = {:5.1f} mm  T = {:5.1f} deg  {}\n", i + 1, r.crush_ratio[i],
+               r.wrapped_angle_deg[i], r.inverted_arc_m[i] * 1e3, r.inverted_turning_deg[i], r.mode[i]);
   fmt::print("alternation index {:.3f}, energy balance {:.2e}, {} steps, wall {:.2f} s\n",
              alternation(r.crush_ratio).index, run.raw.energy_balance_error, run.raw.steps,
              run.raw.wall_time_s);
