@@ -52,8 +52,8 @@ struct Level2Settings {
   // Level 2 runs at rtol ≥ this; a smaller request (the scenes' 1e-8 is for Levels 0/1)
   // is raised to `default_relative_tolerance` and reported. 3e-4 since session 18: at the
   // ζ_b = 0.15 above, IDA's energy balance at 1e-3 reaches 1.3e-3 (Test 30 free); at 3e-4 it
-  // is ≤ 4.2e-4 on all 13 FE reference cases with the crush per ring within 0.004 of the 1e-3
-  // run and the same wrap flags, for 1.3–2.3× the steps (README "FE against the hinge model").
+  // is ≤ 4.2e-4 on all 13 FE reference cases with the crush per ring within 0.008 of the 1e-3
+  // run and the same wrap flags but one (50 m/s ring 5, now as the FE's), for 1.3–2.3× the steps (README "FE against the hinge model").
   double min_relative_tolerance = 1e-6;
   double default_relative_tolerance = 3e-4;
   // IDA's absolute tolerances are 1e-3 × rtol × the component scale (R, V, 1 rad, KE0), and
