@@ -119,6 +119,15 @@ std::optional<double> transition_speed(const std::vector<std::pair<double, doubl
   return std::nullopt;
 }
 
+// The FE's transition speed over the reference's thesis-scene speeds.
+std::optional<double> fe_transition_speed(const std::map<std::string, ReferenceRow>& reference) {
+  std::vector<std::pair<double, double>> speed_index;
+  for (const auto& [name, row] : reference)
+    if (row.thesis_scene) speed_index.emplace_back(row.velocity_m_s, alternation(row.fe.crush_ratio).index);
+  std::sort(speed_index.begin(), speed_index.end());
+  return transition_speed(speed_index);
+}
+
 }  // namespace
 
 TEST(Level2FeReference, ThesisSceneAt15MetresPerSecond) {
@@ -137,12 +146,7 @@ TEST(Level2FeReference, ThesisSceneAt45MetresPerSecond) {
 // 1.6 m/s later (36.3 m/s), and this test fails there. Level 2 is run from 34 m/s up until its
 // index falls through the threshold (3 runs).
 TEST(Level2FeReference, AlternationStopsWithinOneAndAHalfMetresPerSecondOfTheFe) {
-  const auto reference = load_reference();
-  std::vector<std::pair<double, double>> fe;
-  for (const auto& [name, row] : reference)
-    if (row.thesis_scene) fe.emplace_back(row.velocity_m_s, alternation(row.fe.crush_ratio).index);
-  std::sort(fe.begin(), fe.end());
-  const auto fe_speed = transition_speed(fe);
+  const auto fe_speed = fe_transition_speed(load_reference());
   ASSERT_TRUE(fe_speed.has_value());
   EXPECT_GT(*fe_speed, 30.0);
   EXPECT_LT(*fe_speed, 35.0);
@@ -188,11 +192,7 @@ TEST(Level2FeReference, ReferenceCarriesTheThesisVelocityTrend) {
 // AlternationStopsWithinOneAndAHalfMetresPerSecondOfTheFe.
 TEST(Level2FeReference, WeldedVelocityStudyAgreesAwayFromTheTransition) {
   const auto reference = load_reference();
-  std::vector<std::pair<double, double>> fe_index;
-  for (const auto& [name, row] : reference)
-    if (row.thesis_scene) fe_index.emplace_back(row.velocity_m_s, alternation(row.fe.crush_ratio).index);
-  std::sort(fe_index.begin(), fe_index.end());
-  const auto fe_transition = transition_speed(fe_index);
+  const auto fe_transition = fe_transition_speed(reference);
   ASSERT_TRUE(fe_transition.has_value());
   int away = 0, near = 0;
   for (const auto& [name, row] : reference) {
