@@ -41,6 +41,7 @@ Level2Settings level2_settings(const Scene& scene, HingeIntegrator integrator) {
   if (implicit) s.central_difference_safety = kImplicitMembraneSafety;
   s.membrane_damping_ratio = scene.hinge.membrane_damping_ratio.value_or(s.membrane_damping_ratio);
   s.hinge_damping_ratio = scene.hinge.hinge_damping_ratio.value_or(s.hinge_damping_ratio);
+  s.hinge_damper_on_elastic_rate = scene.hinge.level2_hinge_damper == HingeSettings::Level2HingeDamper::Elastic;
   s.flow_d_per_s = scene.hinge.level2_flow_rate_per_s.value_or(s.flow_d_per_s);
   s.flow_q = scene.hinge.level2_flow_exponent.value_or(s.flow_q);
   return s;
@@ -82,6 +83,7 @@ hinge::PolygonChainInput polygon_input(const Scene& scene, const Level2Settings&
   in.contact_damping_s_per_m = s.contact_damping_s_per_m;
   in.membrane_damping_ratio = s.membrane_damping_ratio;
   in.hinge_damping_ratio = s.hinge_damping_ratio;
+  in.hinge_damper_on_elastic_rate = s.hinge_damper_on_elastic_rate;
   in.fixed_target = scene.far_end == FarEnd::Fixed;
   if (scene.analysis.type == AnalysisType::Static) {
     in.driven_impactor = true;
@@ -333,6 +335,11 @@ Level2Run run_level2(const Scene& scene, const HingeRunOptions& options, const L
   if (options.integrator == HingeIntegrator::CentralDifference && s.central_difference_implicit_membrane) {
     r.extra["level2_settings"]["central_difference_implicit_membrane"] = true;
     r.extra["central_difference"]["membrane_correction_work_j"] = raw.membrane_correction_work_j;
+  }
+  if (s.hinge_damper_on_elastic_rate) {  // likewise: "total" (the default) is not echoed
+    r.extra["level2_settings"]["hinge_damper"] = "elastic";
+    if (options.integrator == HingeIntegrator::CentralDifference)
+      r.extra["central_difference"]["hinge_damper_plastic_work_j"] = raw.hinge_damper_plastic_work_j;
   }
   if (run.relative_tolerance_used != options.relative_tolerance)
     r.extra["note"] = fmt::format("requested rtol {:g} is below Level 2's floor {:g}; ran at {:g}",

@@ -47,6 +47,10 @@ struct Level2Settings {
   // 50 m/s): it stays 1.
   double membrane_damping_ratio = 1.0;
   double hinge_damping_ratio = 0.15;
+  // The hinge damper on the elastic rate θ̇ − θ̇p instead of the total θ̇ (PolygonChainInput::
+  // hinge_damper_on_elastic_rate; scene [hinge] level2_hinge_damper = "elastic"). Off: the
+  // damper on θ̇, as calibrated above.
+  bool hinge_damper_on_elastic_rate = false;
   double output_interval_s = 2e-5;        // history and shape samples
   double settle_time_s = 1e-3;            // run on after the impactor stops
   // Level 2 runs at rtol ≥ this; a smaller request (the scenes' 1e-8 is for Levels 0/1)

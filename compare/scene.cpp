@@ -434,6 +434,10 @@ Scene parse_scene(const std::string& text, const std::string& file) {
       *value = r.number(key, 0.0);
       require(**value >= 0, r, key, fmt::format("{} must be >= 0 (a fraction of critical damping; 0: none)", **value));
     }
+    h.level2_hinge_damper = r.choice<HingeSettings::Level2HingeDamper>(
+        "level2_hinge_damper",
+        {{"total", HingeSettings::Level2HingeDamper::Total}, {"elastic", HingeSettings::Level2HingeDamper::Elastic}},
+        h.level2_hinge_damper);
     if (r.has("level2_flow_rate_per_s")) {
       h.level2_flow_rate_per_s = r.number("level2_flow_rate_per_s", 0.0);
       require(std::isfinite(*h.level2_flow_rate_per_s) && *h.level2_flow_rate_per_s > 0, r, "level2_flow_rate_per_s",

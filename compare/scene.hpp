@@ -158,6 +158,10 @@ struct HingeSettings {
   // sessions 14, 16 and 18). Unset: Level2Settings' defaults (ζ_m 1, ζ_b 0.15).
   std::optional<double> membrane_damping_ratio;
   std::optional<double> hinge_damping_ratio;
+  // Level 2 hinge damper on the total rotation rate, c_θ θ̇ ("total", the default), or on its
+  // elastic part, c_θ (θ̇ − θ̇p) ("elastic": no work on a steady plastic flow;
+  // hinge/polygon_chain.hpp PolygonChainInput::hinge_damper_on_elastic_rate).
+  enum class Level2HingeDamper { Total, Elastic } level2_hinge_damper = Level2HingeDamper::Total;
   // Level 2 hinge flow law λ̇ = (2 l_h/t) D ⟨|M|/M_y − 1⟩^q (compare/hinge_run_2d.hpp
   // Level2Settings flow_d_per_s, flow_q): D (1/s, > 0) and q (≥ 1). Unset: the Perzyna
   // regularisation of the rate-independent hinge (1e4, 1); mild-steel Cowper–Symonds is 40.4, 5.

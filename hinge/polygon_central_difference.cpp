@@ -40,6 +40,18 @@ PolygonCentralDifference::PolygonCentralDifference(PolygonChain& chain, double t
   }
   a_.resize(y_.size());
   a_next_.resize(y_.size());
+  // Elastic-rate hinge dampers: the explicit damper term, p = Σ c_θ θ̇p g, joins the implicit
+  // dampers' kicks (or, with explicit dampers, the chain's own evaluation takes θ̇p from its
+  // flow update: polygon_flow_update.cpp). θ̇p = 0 at t0 (no flow before the first step).
+  elastic_rate_dampers_ = chain.hinge_damper_on_elastic_rate() && options.implicit_ring_dampers;
+  if (elastic_rate_dampers_) {
+    theta_p_start_.assign(y_.size(), 0.0);
+    inverse_mass_.assign(y_.size(), 0.0);
+    for (std::size_t o = 2; o < nodes_end_; o += 6)
+      for (std::size_t i = o; i < o + 2; ++i) inverse_mass_[i] = 1.0 / chain_.mass_row(i);
+    plastic_rate_.assign(y_.size(), 0.0);
+    plastic_force_.assign(y_.size(), 0.0);
+  }
   chain_.set_implicit_ring_dampers(options.implicit_ring_dampers);
   chain_.set_implicit_membrane(options.implicit_membrane);
   chain_.set_contact_landing(options.contact_landing_depth, options.contact_landing_speed);
@@ -131,6 +143,7 @@ void PolygonCentralDifference::membrane_step(double h) {
   // K_m v_{n+½}, the solve, d = (C + h K_m) v_{n+1} and K_m v_{n+1} on one assembly.
   chain_.ring_damper_membrane_kick(y, h, v_half_.data(), y, damper_next_.data(), stiff_half_.data(),
                                    stiff_end_.data());
+  if (elastic_rate_dampers_) finish_plastic_rate_step(2.0 * h);
   // Each node's (x, y) rows as one Pair, u/h by one reciprocal (a division per row was the
   // loop's longest latency), and the two works summed per lane — x rows and y rows apart, then
   // added: the sums' order is not the rows', so their last bits are not the row-by-row sums'
@@ -156,6 +169,32 @@ void PolygonCentralDifference::membrane_step(double h) {
   stats_.membrane_correction_work_j += 0.5 * h * correction_work;
   damper_.swap(damper_next_);
   correction_.swap(correction_next_);
+}
+
+// Elastic-rate hinge dampers, after the step's evaluation at x_{n+1}: θ̇p of the step from its
+// flow update, p = Σ c_θ θ̇p g (PolygonChain::hinge_plastic_rate_forces) into the acceleration
+// of the second half-kick (a_next = f/μ; the solve then reads v* = v_{n+½} + ½Δt (f + p)/μ).
+void PolygonCentralDifference::add_plastic_rate_forces(double dt) {
+  double* y = y_.data();
+  const double inv_dt = 1.0 / dt;
+  for (std::size_t o = 4; o < nodes_end_; o += 6) plastic_rate_[o] = (y[o] - theta_p_start_[o]) * inv_dt;
+  plastic_square_sum_ = chain_.hinge_plastic_rate_forces(y, plastic_rate_.data(), plastic_force_.data());
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) a_next_[i] += plastic_force_[i] * inverse_mass_[i];
+}
+
+// ... and after the solve: the damper force at n+1 is −(C v_{n+1} − p), so d_{n+1} = C v − p is
+// what the kicks' work books (and the next step's first kick reads as d_n); the damper
+// moments' work on the plastic rate over the step, Δt (p·v_{n+1} − Σ w c_θ θ̇p²), is noted.
+void PolygonCentralDifference::finish_plastic_rate_step(double dt) {
+  const double* y = y_.data();
+  double pv = 0.0;
+  for (std::size_t o = 2; o < nodes_end_; o += 6)
+    for (std::size_t i = o; i < o + 2; ++i) {
+      damper_next_[i] -= plastic_force_[i];
+      pv += plastic_force_[i] * y[i];
+    }
+  stats_.hinge_damper_plastic_work_j += dt * (pv - plastic_square_sum_);
 }
 
 double PolygonCentralDifference::advance(double t_end) {
@@ -195,9 +234,13 @@ void PolygonCentralDifference::step(double dt) {
     y[chain_.body_offset(0)] -= dt * chain_.impactor_velocity(t_ + 0.5 * dt, y);
   for (std::size_t k = 1; k < 4; ++k) y[acc + k] += 0.5 * dt * a[acc + k];
 
+  if (elastic_rate_dampers_)
+    for (std::size_t o = 4; o < nodes_end_; o += 6) theta_p_start_[o] = y[o];
+
   t_ += dt;
   chain_.rhs_with_flow_update(t_, y, dt, a_next, y[acc], stats_.min_flow_relaxation_s);
   ++stats_.rhs_evaluations;
+  if (elastic_rate_dampers_) add_plastic_rate_forces(dt);
   for (std::size_t o = 2; o < nodes_end_; o += 6) {
     const Pair v = lanes::load(y + o);
     if (implicit) lanes::store(&v_half_[o], v);
@@ -211,6 +254,7 @@ void PolygonCentralDifference::step(double dt) {
     // The node rows now hold the explicit prediction v*; (μ + ½Δt C) v = μ v*, and the
     // acceleration of the second half-kick (the next step's first) is (v_{n+1} − v_{n+½})/(½Δt).
     chain_.ring_damper_step(y, 0.5 * dt, y, damper_next_.data());
+    if (elastic_rate_dampers_) finish_plastic_rate_step(dt);
     const double* d = damper_.data();
     const double* d_next = damper_next_.data();
     double work = 0.0;

@@ -33,6 +33,15 @@
 // with d = C v: exactly their share of the kinetic-energy change of the step, so the
 // balance closes as with the explicit dampers (to the leapfrog's O(Δt²) on the stiffness).
 //
+// Elastic-rate hinge dampers (PolygonChainInput::hinge_damper_on_elastic_rate): the hinge
+// damper moment is c_θ (θ̇ − θ̇p), i.e. its force −Σ c_θ g (g·v − θ̇p) = −(C v − p). The C v part
+// stays implicit as above (same matrix, same stable step); p = Σ c_θ θ̇p g is an explicit force
+// of x_{n+1} and of the step's plastic rate θ̇p = (θp_{n+1} − θp_n)/Δt from the backward-Euler
+// flow update (the rate at n+1 of that update: Δλ = Δt λ̇_{n+1}), added to f(x_{n+1}, …) in both
+// kicks that use it, as the other explicit forces are. The damper work booked is that of
+// d = C v − p, so the balance closes as before. In a steady flow θ̇p ≈ g·v_{n+½} and the net
+// damper force −c_θ g gᵀ(v_{n+1} − v_{n+½}) only adds μ-like inertia along g in the solve.
+//
 // Implicit membrane (CentralDifferenceOptions::implicit_membrane; implicit dampers only): the
 // membrane bars, k_m = EA/ℓ0 unscaled, are the stiffest ring term (README "Which term binds");
 // they leave the step bound. In the three-level form of the leapfrog, δ²x = x_{n+1} − 2x_n +
@@ -126,6 +135,10 @@ struct CentralDifferenceStatistics {
   // implicit_membrane: the work of the membrane's implicit correction h K_m u in the kicks
   // (modelled structure, J; > 0 dissipated), booked in the Kelvin–Voigt accumulator.
   double membrane_correction_work_j = 0.0;
+  // Elastic-rate hinge dampers (PolygonChainInput::hinge_damper_on_elastic_rate): the damper
+  // moments' work on the plastic rate, Σ ∫ c_θ (θ̇ − θ̇p) θ̇p dt (modelled structure, J; part of
+  // the Kelvin–Voigt accumulator, which books ∫ c_θ (θ̇ − θ̇p) θ̇ dt), summed per step at its end.
+  double hinge_damper_plastic_work_j = 0.0;
 };
 
 class PolygonCentralDifference {
@@ -151,6 +164,14 @@ class PolygonCentralDifference {
   // Implicit membrane: K_m v_{n+½}, K_m v_{n+1}, and the correction h K_m u at the step's
   // start and end.
   std::vector<double> stiff_half_, stiff_end_, correction_, correction_next_;
+  // Elastic-rate hinge dampers: θp at the step's start (node rows), the step's θ̇p (θp rows) and
+  // the force of the dampers' plastic part (node velocity rows; PolygonChain::
+  // hinge_plastic_rate_forces), and its Σ w c_θ θ̇p².
+  bool elastic_rate_dampers_ = false;
+  std::vector<double> theta_p_start_, plastic_rate_, plastic_force_, inverse_mass_;
+  double plastic_square_sum_ = 0.0;
+  void add_plastic_rate_forces(double dt);
+  void finish_plastic_rate_step(double dt);
   std::size_t nodes_end_ = 0;  // the node rows: 6 per node from row 0
   std::vector<std::size_t> velocity_rows_, position_rows_;  // the free bodies' pairs x′ = v
   double dt_stable_ = 0.0;

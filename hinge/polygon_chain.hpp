@@ -98,6 +98,21 @@ struct PolygonChainInput {
   // IDA resolves contact-excited membrane ringing at ~1e-7 s steps.
   double membrane_damping_ratio = 0.0;
   double hinge_damping_ratio = 0.0;
+  // false (the default): the hinge damper acts on the total rotation rate, M_damp = c_θ θ̇ — a
+  // dashpot beside the whole elastic–plastic hinge, so that it also resists (and takes energy
+  // from) the plastic flow. true: on the elastic rate only, M_damp = c_θ (θ̇ − θ̇p) — a
+  // Kelvin–Voigt element on the elastic spring, in series with the (visco)plastic slider: it
+  // damps elastic vibrations as before but does no work on a steady plastic flow. The yield
+  // check and the flow law keep the spring moment k_θ(θ − θp) either way (the damper moment
+  // does not load the slider), and the Kelvin–Voigt accumulator books the damper moment's work
+  // c_θ (θ̇ − θ̇p) θ̇, so the energy balance closes as before; of it, c_θ (θ̇ − θ̇p) θ̇p is the
+  // damper moment's work on the plastic rate (CentralDifferenceStatistics::
+  // hinge_damper_plastic_work_j). The central difference takes θ̇p from the step's
+  // backward-Euler flow update, an explicit force beside the implicit c_θ θ̇
+  // (polygon_central_difference.hpp); IDA's residual and Odeint's rhs take θ̇p = λ̇(M, ā) sign M
+  // of the flow law at the state (= θp′ on the solution), with its derivatives in the analytic
+  // Jacobian (polygon_ring_forces.cpp).
+  bool hinge_damper_on_elastic_rate = false;
 };
 
 // Snapshot of the chain for output and measures (full rings, mirrored when half).
@@ -270,6 +285,16 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   // (μ + h C(x)) v = μ v* and d = C(x) v (one banded factorisation per ring, O(N)). v may be y.
   void ring_damper_step(const double* y, double h, double* v, double* d);
   double mass_row(std::size_t row) const { return mu_[row]; }  // the diagonal μ of F
+  // Elastic-rate hinge dampers (PolygonChainInput::hinge_damper_on_elastic_rate): with the
+  // plastic rates θ̇p of the independent hinges in the θp rows of `rate` (state-length; the
+  // half model's mirrored hinges take their image's), out = the node forces of the damper
+  // moments' plastic part −c_θ θ̇p, i.e. +Σ_hinges c_θ θ̇p g (g = ∂θ/∂p at the positions in y,
+  // weighted as ring_damper_forces' C: the half model ½ Eᵀ of the full ring's, axis x rows 0),
+  // on the node velocity rows (the other rows untouched). The damper force is then
+  // −(C v − out). Returns Σ_hinges w c_θ θ̇p² (w = node weight; modelled structure), so that
+  // out·v − that is the damper moments' power on the plastic rate, Σ w c_θ (θ̇ − θ̇p) θ̇p.
+  double hinge_plastic_rate_forces(const double* y, const double* rate, double* out);
+  bool hinge_damper_on_elastic_rate() const { return in_.hinge_damper_on_elastic_rate && c_hinge_ > 0; }
 
   // Implicit membrane (polygon_implicit_membrane.cpp; CentralDifferenceOptions::
   // implicit_membrane). While set, stable_step and stiffness_triplets leave the membrane bars
@@ -483,6 +508,8 @@ class PolygonChain final : public DaeSystem, public OdeSystem {
   std::vector<double> flow_moment_;  // [ring·n_ind + j] moment after the last flow update
   // [j] of the ring in the pass while the flow update runs: |M| ≤ M_y, no flow.
   std::vector<char> hinge_elastic_;
+  // [j] of the ring in the pass: the flow update's Δθp (explicit elastic-rate hinge dampers).
+  std::vector<double> plastic_step_;
   // The flow update of hinge k of ring r at rotation θ from its trial moment (θp, ā in
   // flow_y_, the work, flow_moment_): the hinge's moment after it. Both ring passes use it.
   double flow_hinge(int ring, int k, double theta, double trial);

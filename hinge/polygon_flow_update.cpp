@@ -99,6 +99,11 @@ void PolygonChain::update_hinge_flow(int r, int k, double theta) {
 // r: hinge moments M = k_θ (θ − θp) with the flow update, and bar forces N = k_m (ℓ − ℓ0),
 // each with its Kelvin–Voigt damper when explicit, into hinge_m_ and bar_n_.
 void PolygonChain::central_difference_ring_laws(int r, Tally& tally) {
+  // Explicit elastic-rate hinge dampers (PolygonChainInput::hinge_damper_on_elastic_rate):
+  // the step's θ̇p = Δθp/Δt of the update below, a mirrored hinge's that of its image (updated
+  // before it: ring_hinges_ ascends).
+  const bool elastic_rate = c_hinge_ > 0 && in_.hinge_damper_on_elastic_rate && flow_dt_ > 0.0;
+  if (elastic_rate) plastic_step_.assign(static_cast<std::size_t>(n_ind_), 0.0);
   for (const int k : ring_hinges_) {
     const double theta = hinge_theta_[k];
     moment_[k] = k_theta_ * (theta - theta_p_[k]);
@@ -108,15 +113,23 @@ void PolygonChain::central_difference_ring_laws(int r, Tally& tally) {
       const double yield = std::min(M0_ + H_ * flow_y_[node_offset(r, k) + 5], cap_);
       const bool elastic = !(std::abs(moment_[k]) > yield);
       hinge_elastic_[static_cast<std::size_t>(k)] = elastic;
-      if (elastic) flow_moment_[flow_index(r, k)] = moment_[k];
-      else update_hinge_flow(r, k, theta);
+      if (elastic) {
+        flow_moment_[flow_index(r, k)] = moment_[k];
+      } else {
+        const double before = theta_p_[k];
+        update_hinge_flow(r, k, theta);
+        if (elastic_rate) plastic_step_[static_cast<std::size_t>(k)] = theta_p_[k] - before;
+      }
     }
     double M = moment_[k];
     if (c_hinge_ > 0) {
       const int km = k == 0 ? n_full_ - 1 : k - 1, kp = k + 1 == n_full_ ? 0 : k + 1;
       const double rate = hinge_damper_rate(km, k, kp);
-      M += c_hinge_ * rate;
-      if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
+      // The damper's rate: θ̇, or θ̇ − θ̇p; its power M_damp θ̇ either way.
+      const double damper_rate =
+          elastic_rate ? rate - plastic_step_[static_cast<std::size_t>(k < n_ind_ ? k : n_full_ - k)] / flow_dt_ : rate;
+      M += c_hinge_ * damper_rate;
+      if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * damper_rate * rate;
     }
     hinge_m_[k] = M;
   }

@@ -233,6 +233,58 @@ void PolygonChain::ring_damper_forces(const double* y, const double* v, double* 
   }
 }
 
+// The damper moments' plastic part (PolygonChain::hinge_plastic_rate_forces, polygon_chain.hpp):
+// hinge k's moment −c_θ θ̇p_k puts −M g = c_θ θ̇p_k g on its nodes (k − 1, k, k + 1), g the
+// hinge-angle gradient of for_each_damper_entry, weighted and mirrored as there, so that with C
+// of the same geometry the hinge dampers' force is −Σ c_θ g (g·v − θ̇p) = −(C v − out).
+double PolygonChain::hinge_plastic_rate_forces(const double* y, const double* rate, double* out) {
+  const double share = half_ ? 0.5 : 1.0;
+  double square_sum = 0.0;
+  for (int r = 0; r < n_rings_; ++r) {
+    const std::size_t o = node_offset(r, 0);
+    auto row = [&](int j) { return o + 6 * static_cast<std::size_t>(j); };
+    for (int j = 0; j < n_ind_; ++j) out[row(j) + 2] = out[row(j) + 3] = 0.0;
+    if (!(c_hinge_ > 0)) continue;
+    // Full-ring node k's position (the half model mirrors k ≥ n_ind).
+    auto position = [&](int k, double& px, double& py) {
+      const bool mirrored = half_ && k >= n_ind_;
+      const std::size_t q = row(mirrored ? n_full_ - k : k);
+      px = mirrored ? -y[q] : y[q];
+      py = y[q + 1];
+    };
+    auto hinge = [&](int k, double f) {
+      const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
+      double xm, ym, x, yk, xp, yp;
+      position(km, xm, ym);
+      position(k, x, yk);
+      position(kp, xp, yp);
+      const double ux = x - xm, uy = yk - ym, wx = xp - x, wy = yp - yk;
+      const double iu = 1.0 / (ux * ux + uy * uy), iw = 1.0 / (wx * wx + wy * wy);
+      const double ax = -uy * iu, ay = ux * iu, bx = -wy * iw, by = wx * iw;
+      const int nodes[3] = {km, k, kp};
+      const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
+      for (int p = 0; p < 3; ++p) {
+        const auto [jp, sp] = independent(nodes[p]);
+        const std::size_t q = row(jp) + 2;
+        if (!(half_ && (jp == 0 || jp == n_ind_ - 1))) out[q] += f * g[p][0] * sp;  // axis x rows stay 0
+        out[q + 1] += f * g[p][1];
+      }
+    };
+    // Only the flowing hinges (θ̇p ≠ 0; most hinges in most steps have none); in the half
+    // model an off-axis hinge j and its image N − j, which has the same θp.
+    for (int j = 0; j < n_ind_; ++j) {
+      const double tp = rate[row(j) + 4];
+      if (tp == 0.0) continue;
+      const double f = share * c_hinge_ * tp;
+      const bool pair = half_ && j > 0 && j < n_ind_ - 1;
+      square_sum += (pair ? 2.0 : 1.0) * f * tp;
+      hinge(j, f);
+      if (pair) hinge(n_full_ - j, f);
+    }
+  }
+  return square_sum;
+}
+
 void PolygonChain::ring_damper_step(const double* y, double h, double* v, double* d) {
   if (!(h >= 0.0))
     throw std::invalid_argument("PolygonChain::ring_damper_step: h must be ≥ 0, got " + std::to_string(h));

@@ -192,10 +192,27 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
         moment_[k] = k_theta_ * (hinge_theta_[k] - theta_p_[k]);
         double M = moment_[k];
         double hinge_rate = 0.0;
-        if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v
+        // The damper on the elastic rate (PolygonChainInput::hinge_damper_on_elastic_rate):
+        // θ̇p = λ̇(M, ā) sign M of the flow law at this state (the θp row's φ below, so θp′ on
+        // IDA's solution), with ∂λ̇/∂|M| = dl_dm, ∂λ̇/∂ā = dl_da for the Jacobian.
+        double plastic_rate = 0.0, dl_dm = 0.0, dl_da = 0.0, sg = 1.0;
+        const std::size_t hinge_row = node_offset(r, k < n_ind_ ? k : n_full_ - k);  // its θp, ā
+        if (c_hinge_ > 0) {  // Kelvin–Voigt hinge damper on θ̇ = ∂θ/∂p · v (or θ̇ − θ̇p)
           const double rate = hinge_damper_rate(km, k, kp);
-          M += c_hinge_ * rate;
-          if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * rate * rate;
+          double damper_rate = rate;
+          if (in_.hinge_damper_on_elastic_rate) {
+            const Flow fl = flow(moment_[k], y[hinge_row + 5]);
+            if (fl.over > 0.0) {
+              sg = moment_[k] > 0 ? 1.0 : -1.0;
+              plastic_rate = sg * fl.rate;
+              dl_dm = C_vp_ * q_ * (q_ == 1.0 ? 1.0 : std::pow(fl.over, q_ - 1.0)) / fl.yield_moment;
+              dl_da = M0_ + H_ * y[hinge_row + 5] < cap_ ? -dl_dm * std::abs(moment_[k]) * H_ / fl.yield_moment : 0.0;
+            }
+            damper_rate = rate - plastic_rate;
+          }
+          M += c_hinge_ * damper_rate;
+          // The damper moment's power c_θ θ̇_d θ̇ (θ̇_d its rate: θ̇ or θ̇ − θ̇p).
+          if (k < n_ind_) tally.damping += node_weight(k) * c_hinge_ * damper_rate * rate;
           hinge_rate = rate;
         }
         fx_[km] += M * ax;
@@ -247,11 +264,33 @@ void PolygonChain::ring_forces(const double* y, double* phi, bool record, Tally&
               for (int m = 0; m < 3; ++m)
                 ring_block(r, nodes[i], nodes[m], 0, -c_hinge_ * gx[i] * rx[m], -c_hinge_ * gx[i] * ry[m],
                            -c_hinge_ * gy[i] * rx[m], -c_hinge_ * gy[i] * ry[m]);
-            if (k < n_ind_) {  // damper power w c_θ θ̇²
-              const double d = 2.0 * node_weight(k) * c_hinge_ * hinge_rate;
+            if (k < n_ind_) {  // damper power w c_θ (θ̇ − θ̇p) θ̇ (θ̇p = 0 on the total rate)
+              const double d = node_weight(k) * c_hinge_ * (2.0 * hinge_rate - plastic_rate);
               for (int i = 0; i < 3; ++i) {
                 ring_state_entry(r, acc_base_ + 2, nodes[i], 2, -d * gx[i], -d * gy[i]);
                 ring_state_entry(r, acc_base_ + 2, nodes[i], 0, -d * rx[i], -d * ry[i]);
+              }
+            }
+            if (in_.hinge_damper_on_elastic_rate) {
+              // (Emitted for every hinge, zeros while it does not flow, so that the pattern does
+              // not change with every yield, as the flow rows' below.)
+              // The elastic-rate damper's moment −c_θ λ̇(|M|, ā) sign M of a flowing hinge, with
+              // ∂(λ̇ sign M)/∂M = dl_dm, ∂M/∂p = k_θ g, ∂M/∂θp = −k_θ: ∂F_i/∂p_m = c_θ dl_dm k_θ
+              // g_i g_m, ∂F_i/∂θp = −c_θ dl_dm k_θ g_i, ∂F_i/∂ā = c_θ sign M dl_da g_i; and in the
+              // power, −w c_θ θ̇ λ̇ sign M.
+              const double cm = c_hinge_ * dl_dm * k_theta_, ca = c_hinge_ * sg * dl_da;
+              for (int i = 0; i < 3; ++i) {
+                for (int m = 0; m < 3; ++m)
+                  ring_block(r, nodes[i], nodes[m], 0, cm * gx[i] * gx[m], cm * gx[i] * gy[m], cm * gy[i] * gx[m],
+                             cm * gy[i] * gy[m]);
+                ring_force_entry(r, nodes[i], hinge_row + 4, -cm * gx[i], -cm * gy[i]);
+                ring_force_entry(r, nodes[i], hinge_row + 5, ca * gx[i], ca * gy[i]);
+              }
+              if (k < n_ind_) {
+                const double w = node_weight(k) * hinge_rate;
+                for (int i = 0; i < 3; ++i) ring_state_entry(r, acc_base_ + 2, nodes[i], 0, w * cm * gx[i], w * cm * gy[i]);
+                jac(acc_base_ + 2, hinge_row + 4, -w * cm);
+                jac(acc_base_ + 2, hinge_row + 5, w * ca);
               }
             }
           }

@@ -181,6 +181,7 @@ PolygonRunOutput run_polygon_chain(const PolygonChainInput& input, const Polygon
     out.power_refreshes = s.power_refreshes;
     out.landing_steps = s.landing_steps;
     out.membrane_correction_work_j = chain.structure_factor() * s.membrane_correction_work_j;
+    out.hinge_damper_plastic_work_j = chain.structure_factor() * s.hinge_damper_plastic_work_j;
   } else {
     OdeintOptions oo;
     oo.relative_tolerance = options.relative_tolerance;

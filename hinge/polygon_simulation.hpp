@@ -97,6 +97,11 @@ struct PolygonRunOutput {
   // Central difference, implicit membrane: the work of the membrane's implicit correction
   // (CentralDifferenceStatistics::membrane_correction_work_j), full structure, J; in damping_j.
   double membrane_correction_work_j = 0.0;
+  // Central difference, elastic-rate hinge dampers (PolygonChainInput::
+  // hinge_damper_on_elastic_rate, implicit dampers): the damper moments' work on the plastic
+  // rate, ∫ c_θ (θ̇ − θ̇p) θ̇p dt (CentralDifferenceStatistics::hinge_damper_plastic_work_j), full
+  // structure, J; in damping_j.
+  double hinge_damper_plastic_work_j = 0.0;
   // Largest contact penetration (m) and membrane strain |ℓ/ℓ0 − 1| over the output samples
   // (PolygonChain::max_penetration_last, max_membrane_strain_last): what softened membrane
   // and penalty stiffness cost in geometry.

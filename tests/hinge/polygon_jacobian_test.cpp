@@ -84,8 +84,9 @@ Agreement along_directions(PolygonChain& chain, double t, const std::vector<doub
   return a;
 }
 
-void check_joint(PolygonJoint joint) {
-  const auto in = two_rings(joint);
+void check_joint(PolygonJoint joint, bool elastic_rate_damper = false) {
+  auto in = two_rings(joint);
+  in.hinge_damper_on_elastic_rate = elastic_rate_damper;
   PolygonRunOptions o;
   o.relative_tolerance = 1e-5;
   o.absolute_scale = 1e-5;
@@ -108,6 +109,9 @@ void check_joint(PolygonJoint joint) {
 TEST(PolygonJacobian, AnalyticMatchesDifferencesWelded) { check_joint(PolygonJoint::Welded); }
 TEST(PolygonJacobian, AnalyticMatchesDifferencesFree) { check_joint(PolygonJoint::Free); }
 TEST(PolygonJacobian, AnalyticMatchesDifferencesPlates) { check_joint(PolygonJoint::Plates); }
+// The hinge damper on the elastic rate (PolygonChainInput::hinge_damper_on_elastic_rate): its
+// moment −c_θ λ̇ sign M of the flowing hinges, in the forces and the damper power.
+TEST(PolygonJacobian, AnalyticMatchesDifferencesElasticRateDamper) { check_joint(PolygonJoint::Welded, true); }
 
 // The solver choice is numerics only: the direct solve on the analytic matrix and the
 // previous SPGMR on the coloured-difference preconditioner (PolygonIdaOptions) give the same

@@ -34,10 +34,11 @@ for d in dirs:
         sc = tomllib.load(open(os.path.join(p, "scene.toml"), "rb"))
         s = json.load(open(os.path.join(p, "summary.json")))
         zb = sc["hinge"].get("hinge_damping_ratio", s.get("level2_settings", {}).get("hinge_damping_ratio"))
-        l2[zb].append((sc["impactor"]["velocity_m_s"], s["alternation_index"]))
-for zb, pts in sorted(l2.items()):
+        dm = sc["hinge"].get("level2_hinge_damper", s.get("level2_settings", {}).get("hinge_damper", "total"))
+        l2[(zb, dm)].append((sc["impactor"]["velocity_m_s"], s["alternation_index"]))
+for (zb, dm), pts in sorted(l2.items()):
     pts.sort()
     v = crossing(pts)
-    print(f"Level 2 zeta_b {zb:g} index by speed: " + "  ".join(f"{x:g}:{a:.3f}" for x, a in pts))
-    print(f"Level 2 zeta_b {zb:g} transition: " + (f"{v:.2f} m/s" if v else "no crossing") +
+    print(f"Level 2 zeta_b {zb:g} ({dm}) index by speed: " + "  ".join(f"{x:g}:{a:.3f}" for x, a in pts))
+    print(f"Level 2 zeta_b {zb:g} ({dm}) transition: " + (f"{v:.2f} m/s" if v else "no crossing") +
           (f"; Level 2 - FE = {v - v_fe:+.2f} m/s" if v and v_fe else ""))
