@@ -33,16 +33,7 @@ std::string scene_text(const std::string& hinge_lines) {
          hinge_lines;
 }
 
-// One Test 30 ring alone: no target, the impactor lifted 1 cm off it (as
-// polygon_implicit_dampers_test.cpp).
-PolygonChainInput lone_ring(bool half) {
-  PolygonChainInput in = two_ring_chain::input(PolygonJoint::Free);
-  in.rings = 1;
-  in.half_symmetry = half;
-  in.fixed_target = false;
-  in.impactor_velocity_m_s = 0.0;
-  return in;
-}
+using two_ring_chain::lone_ring;
 
 }  // namespace
 

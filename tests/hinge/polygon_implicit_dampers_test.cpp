@@ -17,17 +17,10 @@ using namespace ringcrush::hinge;
 
 namespace {
 
-// One Test 30 ring alone: no target, the impactor lifted 1 cm off it, so that the only
-// velocity-dependent forces are the ring's Kelvin–Voigt dampers.
-PolygonChainInput lone_ring(bool half) {
-  PolygonChainInput in = two_ring_chain::input(PolygonJoint::Free);
-  in.rings = 1;
-  in.half_symmetry = half;
-  in.fixed_target = false;
-  in.impactor_velocity_m_s = 0.0;
-  return in;
-}
+using two_ring_chain::lone_ring;
 
+// The impactor lifted 1 cm off the lone ring: the only velocity-dependent forces are the
+// ring's Kelvin–Voigt dampers.
 std::vector<double> lifted_state(const PolygonChain& chain) {
   auto y = chain.initial_state();
   y[chain.body_offset(0)] += 0.01;

@@ -33,6 +33,17 @@ inline PolygonChainInput input(PolygonJoint joint) {
   return in;
 }
 
+// One Test 30 ring alone: no target, the impactor at rest (lift it off the ring, as the damper
+// tests do, and the only velocity-dependent forces are the ring's Kelvin–Voigt dampers).
+inline PolygonChainInput lone_ring(bool half) {
+  PolygonChainInput in = input(PolygonJoint::Free);
+  in.rings = 1;
+  in.half_symmetry = half;
+  in.fixed_target = false;
+  in.impactor_velocity_m_s = 0.0;
+  return in;
+}
+
 // Crush of ring `ring` of a polygon shape: outer diameter minus its extent along the chain
 // axis (y) plus one wall (the shape holds the mean line).
 inline double crush(const PolygonShape& s, int ring, const PolygonChainInput& in) {
