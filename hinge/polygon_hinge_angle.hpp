@@ -50,4 +50,16 @@ inline double hinge_rotation(double cross, double dot, double turn0) {
   return hinge_rotation_atan2(cross, dot, turn0);
 }
 
+// ∂θ/∂p of a hinge for its nodes (k − 1, k, k + 1), from its bars u = p_k − p_{k−1} and
+// w = p_{k+1} − p_k: ∂β/∂p of a bar b is ± n/ℓ = ±(−b_y, b_x)/|b|² (THEORY §4.3), and θ turns
+// with β_{k−1} − β_k. The Kelvin–Voigt hinge damper's geometry (polygon_implicit_dampers.cpp).
+struct HingeAngleGradient {
+  double g[3][2];
+};
+inline HingeAngleGradient hinge_angle_gradient(double ux, double uy, double wx, double wy) {
+  const double lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
+  const double ax = -uy / lu, ay = ux / lu, bx = -wy / lw, by = wx / lw;
+  return {{{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}}};
+}
+
 }  // namespace ringcrush::hinge

@@ -29,6 +29,7 @@
 #include "hinge/polygon_band_lanes.hpp"
 #include "hinge/polygon_band_solve.hpp"
 #include "hinge/polygon_chain.hpp"
+#include "hinge/polygon_hinge_angle.hpp"
 #include "hinge/ring_lanes.hpp"
 
 namespace ringcrush::hinge {
@@ -93,14 +94,9 @@ void PolygonChain::for_each_damper_entry(Sink&& sink) const {
   if (!(c_hinge_ > 0)) return;
   for (int k = 0; k < n_full_; ++k) {
     const int km = (k + n_full_ - 1) % n_full_, kp = (k + 1) % n_full_;
-    // n/ℓ of bar u = p_{i+1} − p_i is (−u_y, u_x)/ℓ².
-    const double ux = px_[k] - px_[km], uy = py_[k] - py_[km];
-    const double wx = px_[kp] - px_[k], wy = py_[kp] - py_[k];
-    const double lu = ux * ux + uy * uy, lw = wx * wx + wy * wy;
-    const double ax = -uy / lu, ay = ux / lu, bx = -wy / lw, by = wx / lw;
     const int nodes[3] = {km, k, kp};
-    const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
-    scatter(nodes, g, 3, c_hinge_);
+    const auto grad = hinge_angle_gradient(px_[k] - px_[km], py_[k] - py_[km], px_[kp] - px_[k], py_[kp] - py_[k]);
+    scatter(nodes, grad.g, 3, c_hinge_);
   }
 }
 
@@ -258,11 +254,9 @@ double PolygonChain::hinge_plastic_rate_forces(const double* y, const double* ra
       position(km, xm, ym);
       position(k, x, yk);
       position(kp, xp, yp);
-      const double ux = x - xm, uy = yk - ym, wx = xp - x, wy = yp - yk;
-      const double iu = 1.0 / (ux * ux + uy * uy), iw = 1.0 / (wx * wx + wy * wy);
-      const double ax = -uy * iu, ay = ux * iu, bx = -wy * iw, by = wx * iw;
       const int nodes[3] = {km, k, kp};
-      const double g[3][2] = {{-ax, -ay}, {ax + bx, ay + by}, {-bx, -by}};
+      const auto grad = hinge_angle_gradient(x - xm, yk - ym, xp - x, yp - yk);
+      const auto& g = grad.g;
       for (int p = 0; p < 3; ++p) {
         const auto [jp, sp] = independent(nodes[p]);
         const std::size_t q = row(jp) + 2;
